@@ -1,0 +1,39 @@
+# The two commands a new user runs: `make demo` and `make test`. Both install missing Debian
+# packages (cluster/install-deps.sh), configure with a CMake preset and build.
+#   make demo                 2-rank demo job, output under out/demo/
+#   make test                 every test (ctest), in build/$(PRESET)
+#   make bench                Google Benchmark suite, JSON in out/bench/
+#   make PRESET=asan test     the same with ASan+UBSan (presets: release debug asan ci)
+PRESET ?= release
+BUILD  := build/$(PRESET)
+JOBS   ?= $(shell nproc)
+# OpenMPI refuses to run as root without these; harmless otherwise.
+export OMPI_ALLOW_RUN_AS_ROOT := 1
+export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
+export OMP_NUM_THREADS := 1
+
+.PHONY: all deps build demo test bench clean
+all: build
+
+deps:
+	@cluster/install-deps.sh
+
+$(BUILD)/CMakeCache.txt: | deps
+	cmake --preset $(PRESET)
+
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j$(JOBS)
+
+demo: build
+	mpiexec -n 2 $(BUILD)/clatter-bank field --out out/demo/field.h5 --log-view
+	/usr/bin/python3 analysis/field_check.py out/demo/field.h5
+
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300
+
+bench: build
+	mkdir -p out/bench
+	$(BUILD)/bench/clatter-bench --benchmark_out=out/bench/bench.json --benchmark_out_format=json
+
+clean:
+	rm -rf build out

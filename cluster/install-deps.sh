@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Clatter builds and tests with. Idempotent: when every package is
+# already installed it only runs dpkg-query and exits (well under a second).
+# Usage: cluster/install-deps.sh [--check]   (--check: list what is missing, exit 1 if anything is)
+set -euo pipefail
+
+packages=(
+  # toolchain
+  g++ make cmake pkg-config git
+  # MPI and the numerical stack
+  openmpi-bin libopenmpi-dev
+  libpetsc-real3.18-dev libslepc-real3.18-dev
+  libhdf5-openmpi-dev
+  libeigen3-dev libgsl-dev libcgal-dev libtet1.5-dev
+  # small libraries the code uses
+  libtoml11-dev libcli11-dev libspdlog-dev libfmt-dev libsndfile1-dev
+  # tests and benchmarks
+  libgtest-dev libbenchmark-dev
+  # analysis scripts (run with /usr/bin/python3)
+  python3 python3-numpy python3-h5py python3-matplotlib
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+if [[ "${1:-}" == "--check" ]]; then
+  echo "install-deps: missing: ${missing[*]}"
+  exit 1
+fi
+
+echo "install-deps: installing ${#missing[@]} package(s): ${missing[*]}"
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "install-deps: not root and no sudo; install as root: apt-get install ${missing[*]}" >&2; exit 1; }
+  sudo="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "install-deps: done"

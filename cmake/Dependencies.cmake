@@ -1,0 +1,56 @@
+# Every third-party dependency is found here, once, and exposed as an imported target.
+# On a cluster, point CMake at module-provided installs with <Pkg>_ROOT or PKG_CONFIG_PATH
+# (see docs/cluster.md).
+
+find_package(MPI 3.1 REQUIRED COMPONENTS C CXX)
+
+set(HDF5_PREFER_PARALLEL TRUE)
+find_package(HDF5 REQUIRED COMPONENTS C)
+if(NOT HDF5_IS_PARALLEL)
+  message(FATAL_ERROR
+    "Clatter needs a parallel (MPI-IO) HDF5, but the HDF5 found (${HDF5_VERSION}, "
+    "includes ${HDF5_C_INCLUDE_DIRS}) is serial. Debian: apt-get install libhdf5-openmpi-dev. "
+    "Cluster: load the parallel HDF5 module and configure with -DHDF5_ROOT=<its prefix>.")
+endif()
+add_library(clatter_hdf5 INTERFACE)
+target_include_directories(clatter_hdf5 SYSTEM INTERFACE ${HDF5_C_INCLUDE_DIRS})
+target_compile_definitions(clatter_hdf5 INTERFACE ${HDF5_C_DEFINITIONS})
+target_link_libraries(clatter_hdf5 INTERFACE ${HDF5_C_LIBRARIES} MPI::MPI_C)
+
+find_package(PkgConfig REQUIRED)
+# PETSc.pc does not carry MPI's include path: consumers also link MPI::MPI_CXX.
+pkg_check_modules(PETSc REQUIRED IMPORTED_TARGET PETSc>=3.18)
+pkg_check_modules(SLEPc REQUIRED IMPORTED_TARGET SLEPc>=3.18)
+
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(GSL 2.7 REQUIRED)
+find_package(CGAL REQUIRED)
+
+find_path(TETGEN_INCLUDE_DIR tetgen.h)
+find_library(TETGEN_LIBRARY NAMES tet tetgen)
+if(NOT TETGEN_INCLUDE_DIR OR NOT TETGEN_LIBRARY)
+  message(FATAL_ERROR "TetGen not found (tetgen.h and libtet). Debian: apt-get install libtet1.5-dev; "
+                      "elsewhere: -DTETGEN_INCLUDE_DIR=... -DTETGEN_LIBRARY=...")
+endif()
+add_library(TetGen::TetGen UNKNOWN IMPORTED)
+set_target_properties(TetGen::TetGen PROPERTIES
+  IMPORTED_LOCATION ${TETGEN_LIBRARY}
+  INTERFACE_INCLUDE_DIRECTORIES ${TETGEN_INCLUDE_DIR}
+  INTERFACE_COMPILE_DEFINITIONS TETLIBRARY)
+
+find_package(toml11 3.7 REQUIRED)
+find_package(CLI11 2.1 REQUIRED)
+find_package(fmt 9 REQUIRED)
+find_package(spdlog 1.10 REQUIRED)
+find_package(GTest REQUIRED)
+find_package(benchmark REQUIRED)
+
+# Analysis scripts and file-format tests use Debian's interpreter, which carries h5py and numpy.
+find_program(CLATTER_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
+find_program(CLATTER_PYTHON NAMES python3)
+execute_process(COMMAND ${CLATTER_PYTHON} -c "import h5py, numpy"
+                RESULT_VARIABLE _py_ok OUTPUT_QUIET ERROR_QUIET)
+if(NOT _py_ok EQUAL 0)
+  message(FATAL_ERROR "${CLATTER_PYTHON} cannot import h5py and numpy (Debian: python3-h5py python3-numpy); "
+                      "set -DCLATTER_PYTHON=<a python3 that can>")
+endif()

@@ -1,0 +1,255 @@
+#include "io/config.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <toml.hpp>
+
+#include "core/errors.hpp"
+
+namespace clatter::io {
+namespace {
+
+const char* kind_name(std::size_t alternative) {
+  static const char* names[] = {"an integer", "a number", "a boolean (true or false)", "a string"};
+  return names[alternative];
+}
+
+std::string format_value(const Value& v) {
+  return std::visit(
+      [](const auto& x) -> std::string {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, std::string>) return toml::format(toml::value(x));
+        else if constexpr (std::is_same_v<T, bool>) return x ? "true" : "false";
+        else if constexpr (std::is_same_v<T, double>) {
+          std::string s = fmt::format("{}", x);  // shortest round-trip form
+          if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // stays a TOML float
+          return s;
+        } else return std::to_string(x);
+      },
+      v);
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string unknown_key_message(const Schema& schema, const std::string& name) {
+  const Key* best = nullptr;
+  std::size_t best_distance = 3;  // suggest only close matches
+  for (const auto& k : schema.keys) {
+    auto d = edit_distance(name, k.name);
+    if (d < best_distance) best = &k, best_distance = d;
+  }
+  std::string msg = "unknown key '" + name + "'";
+  if (best) msg += " (did you mean '" + best->name + "'?)";
+  return msg;
+}
+
+std::string range_text(const Range& r) {
+  const bool has_min = std::isfinite(r.min), has_max = std::isfinite(r.max);
+  if (has_min && has_max)
+    return fmt::format("in {}{}, {}{}", r.min_exclusive ? "(" : "[", r.min, r.max, r.max_exclusive ? ")" : "]");
+  if (has_min) return fmt::format("{} {}", r.min_exclusive ? ">" : ">=", r.min);
+  return fmt::format("{} {}", r.max_exclusive ? "<" : "<=", r.max);
+}
+
+bool in_range(const Range& r, double x) {
+  if (!std::isfinite(x)) return false;
+  if (r.min_exclusive ? !(x > r.min) : !(x >= r.min)) return false;
+  if (r.max_exclusive ? !(x < r.max) : !(x <= r.max)) return false;
+  return true;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+// The value as the user wrote it, for messages.
+std::string shown(const toml::value& v) {
+  switch (v.type()) {
+    case toml::value_t::table: return "a table";
+    case toml::value_t::array: return "an array";
+    default: {
+      std::string s = toml::format(v);
+      while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+      return s;
+    }
+  }
+}
+
+std::string where(const std::string& source, const toml::value& v) {
+  auto line = v.location().line();
+  return line > 0 ? source + ":" + std::to_string(line) : source;
+}
+
+}  // namespace
+
+const Key* Schema::find(std::string_view name) const {
+  auto it = std::find_if(keys.begin(), keys.end(), [&](const Key& k) { return k.name == name; });
+  return it == keys.end() ? nullptr : &*it;
+}
+
+Config::Config(const Schema& schema) : schema_(&schema) {
+  for (const auto& k : schema.keys) {
+    if (k.name.find('.') == std::string::npos || k.name.find('.') != k.name.rfind('.'))
+      throw std::logic_error("config key '" + k.name + "' must be section.key");
+    const auto* x = std::get_if<double>(&k.default_value);
+    const auto* n = std::get_if<std::int64_t>(&k.default_value);
+    if ((x && !in_range(k.range, *x)) || (n && !in_range(k.range, static_cast<double>(*n))))
+      throw std::logic_error("default of config key '" + k.name + "' is out of its range");
+    values_[k.name] = k.default_value;
+  }
+}
+
+void Config::assign(const Key& key, Value value, const std::string& source, const std::string& text) {
+  const std::size_t want = key.default_value.index();
+  // An integer is a fine value for a real-valued key.
+  if (want == 1 && value.index() == 0) value = static_cast<double>(std::get<std::int64_t>(value));
+  const std::string head = source + ": key '" + key.name + "' = " + text + ": ";
+  if (value.index() != want) throw InputError(head + "expected " + kind_name(want));
+  if (want == 0 || want == 1) {
+    double x = want == 0 ? static_cast<double>(std::get<std::int64_t>(value)) : std::get<double>(value);
+    if (!in_range(key.range, x)) throw InputError(head + "must be " + range_text(key.range));
+  }
+  if (want == 3 && !key.choices.empty() &&
+      std::find(key.choices.begin(), key.choices.end(), std::get<std::string>(value)) == key.choices.end()) {
+    std::string list;
+    for (const auto& c : key.choices) list += (list.empty() ? "" : ", ") + c;
+    throw InputError(head + "must be one of " + list);
+  }
+  values_[key.name] = std::move(value);
+}
+
+void Config::merge_toml(std::string_view toml_text, const std::string& source) {
+  toml::value root;
+  try {
+    std::istringstream in{std::string(toml_text)};
+    root = toml::parse(in, source);
+  } catch (const toml::syntax_error& e) {
+    // toml11's message is a multi-line picture; keep its first line and the line number.
+    std::string what = e.what();
+    std::string first = what.substr(0, what.find('\n'));
+    if (first.rfind("[error] ", 0) == 0) first = first.substr(8);
+    auto line = e.location().line();
+    throw InputError((line > 0 ? source + ":" + std::to_string(line) : source) + ": malformed TOML: " + first);
+  }
+  for (const auto& [section, table] : root.as_table()) {
+    if (!table.is_table()) {
+      throw InputError(where(source, table) + ": " + unknown_key_message(*schema_, section) +
+                       ": settings belong in a [section]");
+    }
+    for (const auto& [name, v] : table.as_table()) {
+      const std::string full = section + "." + name;
+      const Key* key = schema_->find(full);
+      if (!key) throw InputError(where(source, v) + ": " + unknown_key_message(*schema_, full));
+      Value value;
+      switch (v.type()) {
+        case toml::value_t::integer: value = static_cast<std::int64_t>(v.as_integer()); break;
+        case toml::value_t::floating: value = static_cast<double>(v.as_floating()); break;
+        case toml::value_t::boolean: value = static_cast<bool>(v.as_boolean()); break;
+        case toml::value_t::string: value = static_cast<std::string>(v.as_string()); break;
+        default:
+          throw InputError(where(source, v) + ": key '" + full + "' = " + shown(v) + ": expected " +
+                           kind_name(key->default_value.index()));
+      }
+      assign(*key, std::move(value), where(source, v), shown(v));
+    }
+  }
+}
+
+void Config::set(std::string_view assignment) {
+  const std::string source = "--set '" + std::string(assignment) + "'";
+  auto eq = assignment.find('=');
+  if (eq == std::string_view::npos) throw InputError(source + ": expected section.key=value");
+  const std::string name(trim(assignment.substr(0, eq)));
+  std::string_view text = trim(assignment.substr(eq + 1));
+  const Key* key = schema_->find(name);
+  if (!key) throw InputError(source + ": " + unknown_key_message(*schema_, name));
+  const std::string head = source + ": key '" + name + "' = '" + std::string(text) + "': ";
+  Value value;
+  switch (key->default_value.index()) {
+    case 0: {
+      std::int64_t n = 0;
+      auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+      if (ec != std::errc() || end != text.data() + text.size() || text.empty())
+        throw InputError(head + "expected an integer");
+      value = n;
+      break;
+    }
+    case 1: {
+      std::string s(text);
+      char* end = nullptr;
+      double x = s.empty() ? 0.0 : std::strtod(s.c_str(), &end);
+      if (s.empty() || end != s.c_str() + s.size()) throw InputError(head + "expected a number");
+      value = x;
+      break;
+    }
+    case 2:
+      if (text != "true" && text != "false") throw InputError(head + "expected true or false");
+      value = text == "true";
+      break;
+    default:
+      if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = text.substr(1, text.size() - 2);
+      value = std::string(text);
+  }
+  assign(*key, std::move(value), source, "'" + std::string(text) + "'");
+}
+
+const Value& Config::get(std::string_view key, std::size_t alternative) const {
+  auto it = values_.find(key);
+  if (it == values_.end()) throw std::logic_error("config key '" + std::string(key) + "' is not in the schema");
+  if (it->second.index() != alternative)
+    throw std::logic_error("config key '" + std::string(key) + "' read as " + kind_name(alternative));
+  return it->second;
+}
+
+std::int64_t Config::integer(std::string_view key) const { return std::get<0>(get(key, 0)); }
+double Config::real(std::string_view key) const { return std::get<1>(get(key, 1)); }
+bool Config::boolean(std::string_view key) const { return std::get<2>(get(key, 2)); }
+const std::string& Config::string(std::string_view key) const { return std::get<3>(get(key, 3)); }
+
+std::string Config::to_toml() const {
+  std::string out = "# " + schema_->title + "\n";
+  std::string section;
+  for (const auto& k : schema_->keys) {
+    auto dot = k.name.find('.');
+    std::string s = k.name.substr(0, dot);
+    if (s != section) {
+      out += "\n[" + s + "]\n";
+      section = s;
+    }
+    out += "# " + k.help + "\n";
+    out += k.name.substr(dot + 1) + " = " + format_value(values_.at(k.name)) + "\n";
+  }
+  return out;
+}
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open config file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": cannot read config file");
+  return text.str();
+}
+
+}  // namespace clatter::io

@@ -1,0 +1,111 @@
+#pragma once
+// RAII HDF5 files, datasets and attributes with checked reads. Every file Clatter creates is
+// written under a temporary name and appears under its final name only on commit(); a run that
+// fails before then leaves no output file at all.
+#include <hdf5.h>
+#include <mpi.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace clatter::io {
+
+// Owns one HDF5 identifier and closes it with the matching H5?close.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer close) : id_(id), close_(close) {}
+  ~Handle() { reset(); }
+  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), close_(o.close_) {}
+  Handle& operator=(Handle&& o) noexcept;
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  hid_t get() const { return id_; }
+  // Gives up ownership without closing, for a close whose result must be checked.
+  hid_t release() { return std::exchange(id_, H5I_INVALID_HID); }
+  void reset();
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer close_ = nullptr;
+};
+
+class File {
+ public:
+  // Creates `path` (and its parent folders) for writing, under a temporary name in the same folder.
+  // With a communicator other than MPI_COMM_NULL the file is opened through MPI-IO and this call,
+  // every write of a dataset or attribute, commit() and destruction are collective over it.
+  static File create(const std::string& path, MPI_Comm comm = MPI_COMM_NULL);
+  // Opens an existing file read-only (serial). Errors name the file.
+  static File open(const std::string& path);
+
+  File(File&&) noexcept;
+  File& operator=(File&&) = delete;
+  File(const File&) = delete;
+  File& operator=(const File&) = delete;
+  // An uncommitted output is closed and its temporary removed.
+  ~File();
+
+  // Closes the file, flushes it to stable storage (fsync) and renames it to its final path.
+  void commit();
+
+  const std::string& path() const { return path_; }
+  hid_t id() const { return file_.get(); }
+  bool parallel() const { return comm_ != MPI_COMM_NULL; }
+  MPI_Comm comm() const { return comm_; }
+
+ private:
+  File() = default;
+  void discard() noexcept;
+  std::string path_;       // the final name, used in every message
+  std::string temp_path_;  // empty for files opened for reading
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  Handle file_;
+};
+
+// Element types Clatter stores.
+template <class T>
+concept Element = std::is_same_v<T, float> || std::is_same_v<T, double> || std::is_same_v<T, std::int32_t> ||
+                  std::is_same_v<T, std::int64_t> || std::is_same_v<T, std::uint8_t> ||
+                  std::is_same_v<T, std::uint32_t> || std::is_same_v<T, std::uint64_t>;
+
+using Dims = std::vector<hsize_t>;
+
+// Writes a whole dataset from this process (serial files) with a "units" attribute ("1" for
+// dimensionless). Parent groups are created as needed.
+template <Element T>
+void write_dataset(File& file, const std::string& name, std::span<const T> data, const Dims& dims,
+                   std::string_view units);
+
+// Collective on a parallel file: every rank writes its block [offset, offset + count) of a dataset
+// of `global_dims` in one collective MPI-IO call. A rank may own an empty block.
+template <Element T>
+void write_dataset_block(File& file, const std::string& name, const Dims& global_dims, const Dims& offset,
+                         const Dims& count, std::span<const T> data, std::string_view units);
+
+// Scalar attributes on `object` ("/" for the file). On a parallel file every rank must pass the same value.
+template <Element T>
+void write_attribute(File& file, const std::string& object, const std::string& name, T value);
+void write_attribute(File& file, const std::string& object, const std::string& name, std::string_view value);
+
+// Reads a dataset after checking that its element type is T, its shape matches `expected_dims`
+// (-1 matches any extent) and its "units" attribute equals `expected_units`. A mismatch throws
+// InputError naming the file, dataset, expected and found. `found_dims` receives the shape.
+template <Element T>
+std::vector<T> read_dataset(const File& file, const std::string& name, const std::vector<long long>& expected_dims,
+                            std::string_view expected_units, Dims* found_dims = nullptr);
+
+template <Element T>
+T read_attribute(const File& file, const std::string& object, const std::string& name);
+std::string read_string_attribute(const File& file, const std::string& object, const std::string& name);
+
+bool exists(const File& file, const std::string& name);
+// Creates a group (and its parents). Collective on a parallel file.
+void create_group(File& file, const std::string& name);
+
+}  // namespace clatter::io

@@ -1,0 +1,55 @@
+#include "io/provenance.hpp"
+
+#include <chrono>
+#include <ctime>
+
+#include "core/build_info.hpp"
+#include "core/errors.hpp"
+
+namespace clatter::io {
+
+void write_header(File& file, const std::string& format, int format_version) {
+  write_attribute(file, "/", "format", format);
+  write_attribute<std::int32_t>(file, "/", "format_version", format_version);
+}
+
+void write_provenance(File& file, const std::string& command_line, const std::string& config_toml, int n_ranks) {
+  const BuildInfo& b = build_info();
+  create_group(file, "/provenance");
+  const std::string g = "/provenance";
+  write_attribute(file, g, "command", command_line);
+  write_attribute(file, g, "config_toml", config_toml);
+  write_attribute<std::int32_t>(file, g, "n_ranks", n_ranks);
+  write_attribute(file, g, "clatter_version", b.version);
+  write_attribute(file, g, "git_revision", b.git_revision);
+  write_attribute(file, g, "compiler", b.compiler);
+  write_attribute(file, g, "mpi", b.mpi);
+  write_attribute(file, g, "petsc", b.petsc);
+  write_attribute(file, g, "slepc", b.slepc);
+  write_attribute(file, g, "hdf5", b.hdf5);
+  // Every rank must write the same bytes into a parallel file's attribute: the time comes from
+  // rank 0 (seconds resolution, and ranks start together), broadcast to be safe.
+  long long now = static_cast<long long>(std::time(nullptr));
+  if (file.parallel()) MPI_Bcast(&now, 1, MPI_LONG_LONG, 0, file.comm());
+  std::time_t t = static_cast<std::time_t>(now);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  write_attribute(file, g, "created_utc", std::string(text));
+}
+
+void check_header(const File& file, const std::string& format, int format_version) {
+  std::string found;
+  try {
+    found = read_string_attribute(file, "/", "format");
+  } catch (const InputError&) {
+    throw InputError(file.path() + ": not a Clatter file (no 'format' attribute); expected format '" + format + "'");
+  }
+  if (found != format)
+    throw InputError(file.path() + ": format '" + found + "', expected '" + format + "'");
+  const auto version = read_attribute<std::int32_t>(file, "/", "format_version");
+  if (version != format_version)
+    throw InputError(file.path() + ": format '" + format + "' version " + std::to_string(version) +
+                     ", this build reads version " + std::to_string(format_version));
+}
+
+}  // namespace clatter::io

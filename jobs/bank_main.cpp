@@ -1,0 +1,78 @@
+// clatter-bank: the MPI driver that builds Clatter's soundbanks. One subcommand per job.
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+
+#include "core/build_info.hpp"
+#include "core/errors.hpp"
+#include "core/stage_log.hpp"
+#include "jobs/field_job.hpp"
+#include "jobs/run_options.hpp"
+#include "mpi/comm.hpp"
+#include "mpi/log.hpp"
+#include "mpi/session.hpp"
+#include "mpi/stage_report.hpp"
+
+namespace {
+
+using namespace clatter;
+
+int bank_main(mpi::Session& session, int argc, char** argv) {
+  const MPI_Comm world = session.world();
+  CLI::App app{"clatter-bank: builds Clatter soundbanks on MPI ranks.\n"
+               "Run under mpirun/srun for more than one rank. Exit codes: 0 done, 1 run-time failure, 2 bad input.",
+               "clatter-bank"};
+  app.set_version_flag("--version", version_text("clatter-bank"));
+  app.require_subcommand(1);
+  app.fallthrough();  // global options may follow the subcommand
+  jobs::GlobalOptions global;
+  jobs::add_global_options(app, global);
+
+  jobs::ConfigOptions field_config;
+  std::string field_out = "field.h5";
+  auto* field = app.add_subcommand("field", "sample the exact pressure of a psi-driven monopole on a distributed "
+                                            "grid and write it with collective HDF5 (the foundation demo)");
+  jobs::add_config_options(*field, field_config);
+  field->add_option("-o,--out", field_out, "output HDF5 file")->capture_default_str();
+
+  // Every rank parses the same argv, so a usage error is the same everywhere.
+  bool exit_now = false;
+  mpi::agree(world, [&] {
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::Success& e) {  // --help, --version
+      if (session.is_root()) app.exit(e);
+      exit_now = true;
+    } catch (const CLI::ParseError& e) {
+      throw InputError(std::string(e.what()) + " (see clatter-bank --help)");
+    }
+  });
+  if (exit_now) return kExitOk;
+  mpi::agree(world, [&] {
+    mpi::configure_logging(session.rank(), session.size(), {global.log_all_ranks, global.log_level});
+  });
+
+  if (field->parsed()) {
+    auto config = jobs::load_config(world, jobs::field_schema(), field_config);
+    if (field_config.print) {
+      if (session.is_root()) std::fputs(config.to_toml().c_str(), stdout);
+      return kExitOk;
+    }
+    Stage stage("field");
+    jobs::run_field(world, config, field_out, jobs::command_line(argc, argv));
+  }
+
+  if (global.log_view) {
+    auto table = mpi::stage_table(world, stage_log());
+    if (session.is_root()) std::fputs(("\n" + table).c_str(), stdout);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return clatter::mpi::run(argc, argv, "clatter-bank",
+                           [&](clatter::mpi::Session& session) { return bank_main(session, argc, argv); });
+}

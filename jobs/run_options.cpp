@@ -1,0 +1,43 @@
+#include "jobs/run_options.hpp"
+
+#include "mpi/comm.hpp"
+
+namespace clatter::jobs {
+
+void add_config_options(CLI::App& sub, ConfigOptions& options) {
+  sub.add_option("-c,--config", options.path, "TOML config file (default: the built-in config; see --print-config)");
+  sub.add_option("--set", options.sets, "override one config key, e.g. --set grid.n_cells=128 (repeatable)")
+      ->type_name("SECTION.KEY=VALUE")
+      ->allow_extra_args(false);
+  sub.add_flag("--print-config", options.print, "print the effective config as TOML and exit");
+}
+
+void add_global_options(CLI::App& app, GlobalOptions& options) {
+  app.add_flag("--log-view", options.log_view, "print the stage-timing table (min/avg/max over ranks) at the end");
+  app.add_flag("--log-all-ranks", options.log_all_ranks, "every rank logs, tagged [rank r/n] (default: rank 0 only)");
+  app.add_option("--log-level", options.log_level, "error, warn, info or debug")
+      ->check(CLI::IsMember({"error", "warn", "info", "debug"}))
+      ->capture_default_str();
+}
+
+io::Config load_config(MPI_Comm comm, const io::Schema& schema, const ConfigOptions& options) {
+  std::string text;
+  mpi::agree(comm, [&] {
+    if (mpi::rank(comm) == 0 && !options.path.empty()) text = io::read_text_file(options.path);
+  });
+  text = mpi::broadcast(comm, text);
+  io::Config config(schema);
+  mpi::agree(comm, [&] {
+    if (!options.path.empty()) config.merge_toml(text, options.path);
+    for (const auto& s : options.sets) config.set(s);
+  });
+  return config;
+}
+
+std::string command_line(int argc, char** argv) {
+  std::string s;
+  for (int i = 0; i < argc; ++i) s += (i ? " " : "") + std::string(argv[i]);
+  return s;
+}
+
+}  // namespace clatter::jobs

@@ -1,0 +1,36 @@
+#pragma once
+// What every clatter-bank subcommand shares: the config options (-c, --set, --print-config), the
+// logging and timing options, and loading a config the same way on every rank.
+#include <CLI/CLI.hpp>
+#include <mpi.h>
+
+#include <string>
+#include <vector>
+
+#include "io/config.hpp"
+
+namespace clatter::jobs {
+
+struct ConfigOptions {
+  std::string path;               // empty: the built-in defaults
+  std::vector<std::string> sets;  // "section.key=value", applied in order after the file
+  bool print = false;             // print the effective config and exit
+};
+
+struct GlobalOptions {
+  bool log_view = false;
+  bool log_all_ranks = false;
+  std::string log_level = "info";
+};
+
+void add_config_options(CLI::App& sub, ConfigOptions& options);
+void add_global_options(CLI::App& app, GlobalOptions& options);
+
+// Rank 0 reads the file; every rank parses the same text, so a bad config fails identically
+// everywhere (as a CollectiveError with exit code 2) and no rank is left waiting.
+io::Config load_config(MPI_Comm comm, const io::Schema& schema, const ConfigOptions& options);
+
+// The command line as one string, for provenance.
+std::string command_line(int argc, char** argv);
+
+}  // namespace clatter::jobs
