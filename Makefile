@@ -25,15 +25,15 @@ build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j$(JOBS)
 
 demo: build
-	mpiexec -n 2 $(BUILD)/clatter-bank field --out out/demo/field.h5 --log-view
-	/usr/bin/python3 analysis/field_check.py out/demo/field.h5
+	mpiexec -n 2 $(BUILD)/bin/clatter-bank field --out out/demo/field.h5 --log-view
+	$$(sed -n "s/^CLATTER_PYTHON:FILEPATH=//p" $(BUILD)/CMakeCache.txt) analysis/field_check.py out/demo/field.h5
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300
 
 bench: build
 	mkdir -p out/bench
-	$(BUILD)/bench/clatter-bench --benchmark_out=out/bench/bench.json --benchmark_out_format=json
+	$(BUILD)/bin/clatter-bench --benchmark_out=out/bench/bench.json --benchmark_out_format=json
 
 clean:
 	rm -rf build out

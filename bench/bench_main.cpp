@@ -1,1 +1,85 @@
-int main(){}
+// clatter-bench: the machine's memory bandwidth (the roofline every kernel is compared with) and
+// the cost of the foundation's own layers. Metrics are explained in docs/benchmarks.md.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <numeric>
+#include <vector>
+
+#include "core/stage_log.hpp"
+#include "io/h5.hpp"
+#include "kernels/pulse.hpp"
+
+namespace {
+
+// STREAM (McCalpin) kernels on arrays far larger than the last-level cache. Bytes counted the
+// STREAM way: what the loop reads plus what it writes, without write-allocate traffic.
+void BM_StreamCopy(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  std::vector<double> a(n, 1.0), c(n, 0.0);
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < n; ++i) c[i] = a[i];
+    benchmark::ClobberMemory();
+  }
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * 2 * n * sizeof(double)));
+}
+
+void BM_StreamTriad(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
+  const double s = 3.0;
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < n; ++i) a[i] = b[i] + s * c[i];
+    benchmark::ClobberMemory();
+  }
+  benchmark::DoNotOptimize(a.data());
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * 3 * n * sizeof(double)));
+}
+
+// psi(t; h) evaluations per second: it is called once per boundary cell per time step in the FDTD.
+void BM_Pulse(benchmark::State& state) {
+  std::vector<double> t(4096);
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = -3e-4 + 6e-4 * static_cast<double>(i) / 4096.0;
+  for (auto _ : state) {
+    double sum = 0;
+    for (double x : t) sum += clatter::kernels::pulse(x, 1e-4);
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * t.size()));
+}
+
+// Cost of one timed stage (enter + leave) inside a parent, as a time loop would use it.
+void BM_StageEnterLeave(benchmark::State& state) {
+  clatter::StageLog log;
+  clatter::Stage parent("solve", log);
+  for (auto _ : state) {
+    clatter::Stage step("step", log);
+    benchmark::DoNotOptimize(&step);
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
+}
+
+// One float32 dataset written through io::File, committed (fsync + rename) every iteration.
+void BM_H5WriteCommit(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  std::vector<float> data(n);
+  std::iota(data.begin(), data.end(), 0.0f);
+  const std::string path = (std::filesystem::temp_directory_path() / "clatter-bench-write.h5").string();
+  for (auto _ : state) {
+    auto f = clatter::io::File::create(path);
+    clatter::io::write_dataset<float>(f, "/p", data, {n}, "Pa");
+    f.commit();
+  }
+  std::filesystem::remove(path);
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * n * sizeof(float)));
+}
+
+}  // namespace
+
+BENCHMARK(BM_StreamCopy)->Arg(1 << 25)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_StreamTriad)->Arg(1 << 25)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Pulse);
+BENCHMARK(BM_StageEnterLeave);
+BENCHMARK(BM_H5WriteCommit)->Arg(1 << 18)->Arg(1 << 24)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+BENCHMARK_MAIN();

@@ -45,12 +45,19 @@ find_package(spdlog 1.10 REQUIRED)
 find_package(GTest REQUIRED)
 find_package(benchmark REQUIRED)
 
-# Analysis scripts and file-format tests use Debian's interpreter, which carries h5py and numpy.
-find_program(CLATTER_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
-find_program(CLATTER_PYTHON NAMES python3)
-execute_process(COMMAND ${CLATTER_PYTHON} -c "import h5py, numpy"
-                RESULT_VARIABLE _py_ok OUTPUT_QUIET ERROR_QUIET)
-if(NOT _py_ok EQUAL 0)
-  message(FATAL_ERROR "${CLATTER_PYTHON} cannot import h5py and numpy (Debian: python3-h5py python3-numpy); "
-                      "set -DCLATTER_PYTHON=<a python3 that can>")
+# Analysis scripts and file-format tests need a python3 that imports h5py and numpy: the first one
+# on PATH that does, else Debian's /usr/bin/python3 (python3-h5py installs there).
+if(NOT CLATTER_PYTHON)
+  find_program(_path_python NAMES python3 NO_CACHE)
+  foreach(_candidate ${_path_python} /usr/bin/python3)
+    execute_process(COMMAND ${_candidate} -c "import h5py, numpy" RESULT_VARIABLE _py_rc OUTPUT_QUIET ERROR_QUIET)
+    if(_py_rc EQUAL 0)
+      set(CLATTER_PYTHON ${_candidate} CACHE FILEPATH "python3 with h5py and numpy")
+      break()
+    endif()
+  endforeach()
+endif()
+if(NOT CLATTER_PYTHON)
+  message(FATAL_ERROR "No python3 that imports h5py and numpy (Debian: python3-h5py python3-numpy); "
+                      "configure with -DCLATTER_PYTHON=<a python3 that can>")
 endif()

@@ -149,6 +149,7 @@ void Config::merge_toml(std::string_view toml_text, const std::string& source) {
     std::string what = e.what();
     std::string first = what.substr(0, what.find('\n'));
     if (first.rfind("[error] ", 0) == 0) first = first.substr(8);
+    if (first.rfind("toml::", 0) == 0 && first.find(": ") != std::string::npos) first = first.substr(first.find(": ") + 2);
     auto line = e.location().line();
     throw InputError((line > 0 ? source + ":" + std::to_string(line) : source) + ": malformed TOML: " + first);
   }

@@ -178,7 +178,10 @@ void File::discard() noexcept {
   if (temp_path_.empty()) return;
   // A parallel close is collective; an abandoned output may be abandoned by one rank alone (it is
   // unwinding towards MPI_Abort), so only a serial file is closed here. The temporary goes either way.
-  if (!parallel()) file_.reset();
+  if (parallel())
+    file_.release();  // HDF5 closes it at MPI_Finalize, or MPI_Abort ends the process first
+  else
+    file_.reset();
   std::remove(temp_path_.c_str());
   unregister_temporary(temp_path_);
   temp_path_.clear();
