@@ -11,6 +11,9 @@ JOBS   ?= $(shell nproc)
 export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export OMP_NUM_THREADS := 1
+MAKEFLAGS += --no-print-directory
+# The python3 with h5py that CMake chose (read when a recipe runs, i.e. after configuring).
+PYTHON = $(shell sed -n 's/^CLATTER_PYTHON:FILEPATH=//p' $(BUILD)/CMakeCache.txt)
 
 .PHONY: all deps build demo test bench clean
 all: build
@@ -26,7 +29,7 @@ build: deps $(BUILD)/CMakeCache.txt
 
 demo: build
 	mpiexec -n 2 $(BUILD)/bin/clatter-bank field --out out/demo/field.h5 --log-view
-	$$(sed -n "s/^CLATTER_PYTHON:FILEPATH=//p" $(BUILD)/CMakeCache.txt) analysis/field_check.py out/demo/field.h5
+	$(PYTHON) analysis/field_check.py out/demo/field.h5
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300

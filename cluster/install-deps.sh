@@ -20,10 +20,11 @@ packages=(
   python3 python3-numpy python3-h5py python3-matplotlib
 )
 
+# One dpkg-query for all: packages it does not list as installed are missing.
+installed=$(dpkg-query -W -f='${Package} ${Status}\n' "${packages[@]}" 2>/dev/null | awk '/ install ok installed$/ {print $1}' || true)
 missing=()
 for p in "${packages[@]}"; do
-  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
-  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+  grep -qx -- "$p" <<<"$installed" || missing+=("$p")
 done
 
 if [[ ${#missing[@]} -eq 0 ]]; then
