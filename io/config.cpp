@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <toml.hpp>
@@ -16,7 +17,8 @@ namespace clatter::io {
 namespace {
 
 const char* kind_name(std::size_t alternative) {
-  static const char* names[] = {"an integer", "a number", "a boolean (true or false)", "a string"};
+  static const char* names[] = {"an integer", "a number", "a boolean (true or false)", "a string",
+                                "an array of numbers"};
   return names[alternative];
 }
 
@@ -24,7 +26,8 @@ std::string format_value(const Value& v) {
   return std::visit(
       [](const auto& x) -> std::string {
         using T = std::decay_t<decltype(x)>;
-        if constexpr (std::is_same_v<T, std::string>) return toml::format(toml::value(x));
+        if constexpr (std::is_same_v<T, RealList>) return "<list>";  // formatted by format_list
+        else if constexpr (std::is_same_v<T, std::string>) return toml::format(toml::value(x));
         else if constexpr (std::is_same_v<T, bool>) return x ? "true" : "false";
         else if constexpr (std::is_same_v<T, double>) {
           std::string s = fmt::format("{}", x);  // shortest round-trip form
@@ -33,6 +36,38 @@ std::string format_value(const Value& v) {
         } else return std::to_string(x);
       },
       v);
+}
+
+std::string format_list(const RealList& xs, int group) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    if (group > 1 && i % static_cast<std::size_t>(group) == 0) out += (i ? ", [" : "[");
+    else if (i) out += ", ";
+    out += format_value(xs[i]);
+    if (group > 1 && (i + 1) % static_cast<std::size_t>(group) == 0) out += "]";
+  }
+  return out + "]";
+}
+
+// A TOML array of numbers, or of `group`-tuples of numbers, flattened; nullopt if it is neither.
+std::optional<RealList> to_list(const toml::value& v, int group) {
+  if (!v.is_array()) return std::nullopt;
+  RealList out;
+  auto number = [&](const toml::value& x) {
+    if (x.is_integer()) return out.push_back(static_cast<double>(x.as_integer())), true;
+    if (x.is_floating()) return out.push_back(static_cast<double>(x.as_floating())), true;
+    return false;
+  };
+  for (const auto& e : v.as_array()) {
+    if (group > 1) {
+      if (!e.is_array() || e.as_array().size() != static_cast<std::size_t>(group)) return std::nullopt;
+      for (const auto& x : e.as_array())
+        if (!number(x)) return std::nullopt;
+    } else if (!number(e)) {
+      return std::nullopt;
+    }
+  }
+  return out;
 }
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -130,6 +165,9 @@ void Config::assign(const Key& key, Value value, const std::string& source, cons
     double x = want == 0 ? static_cast<double>(std::get<std::int64_t>(value)) : std::get<double>(value);
     if (!in_range(key.range, x)) throw InputError(head + "must be " + range_text(key.range));
   }
+  if (want == 4)
+    for (double x : std::get<RealList>(value))
+      if (!in_range(key.range, x)) throw InputError(head + "every element must be " + range_text(key.range));
   if (want == 3 && !key.choices.empty() &&
       std::find(key.choices.begin(), key.choices.end(), std::get<std::string>(value)) == key.choices.end()) {
     std::string list;
@@ -168,6 +206,18 @@ void Config::merge_toml(std::string_view toml_text, const std::string& source) {
         case toml::value_t::floating: value = static_cast<double>(v.as_floating()); break;
         case toml::value_t::boolean: value = static_cast<bool>(v.as_boolean()); break;
         case toml::value_t::string: value = static_cast<std::string>(v.as_string()); break;
+        case toml::value_t::array:
+          if (key->default_value.index() == 4) {
+            auto list = to_list(v, key->group);
+            if (list) {
+              value = std::move(*list);
+              break;
+            }
+            throw InputError(where(source, v) + ": key '" + full + "' = " + shown(v) + ": expected " +
+                             (key->group > 1 ? "an array of " + std::to_string(key->group) + "-element arrays of numbers"
+                                             : std::string("an array of numbers")));
+          }
+          [[fallthrough]];
         default:
           throw InputError(where(source, v) + ": key '" + full + "' = " + shown(v) + ": expected " +
                            kind_name(key->default_value.index()));
@@ -208,6 +258,20 @@ void Config::set(std::string_view assignment) {
       if (text != "true" && text != "false") throw InputError(head + "expected true or false");
       value = text == "true";
       break;
+    case 4: {
+      std::optional<RealList> list;
+      try {
+        std::istringstream in("v = " + std::string(text));
+        list = to_list(toml::find(toml::parse(in, "--set"), "v"), key->group);
+      } catch (const std::exception&) {
+      }
+      if (!list)
+        throw InputError(head + (key->group > 1 ? "expected an array of " + std::to_string(key->group) +
+                                                      "-element arrays, e.g. [[1, 0, 0], [0, 1, 0]]"
+                                                : std::string("expected an array of numbers, e.g. [1, 2]")));
+      value = std::move(*list);
+      break;
+    }
     default:
       if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = text.substr(1, text.size() - 2);
       value = std::string(text);
@@ -227,6 +291,7 @@ std::int64_t Config::integer(std::string_view key) const { return std::get<0>(ge
 double Config::real(std::string_view key) const { return std::get<1>(get(key, 1)); }
 bool Config::boolean(std::string_view key) const { return std::get<2>(get(key, 2)); }
 const std::string& Config::string(std::string_view key) const { return std::get<3>(get(key, 3)); }
+const RealList& Config::reals(std::string_view key) const { return std::get<4>(get(key, 4)); }
 
 std::string Config::to_toml() const {
   std::string out = "# " + schema_->title + "\n";
@@ -239,7 +304,9 @@ std::string Config::to_toml() const {
       section = s;
     }
     out += "# " + k.help + "\n";
-    out += k.name.substr(dot + 1) + " = " + format_value(values_.at(k.name)) + "\n";
+    const Value& v = values_.at(k.name);
+    out += k.name.substr(dot + 1) + " = " +
+           (v.index() == 4 ? format_list(std::get<RealList>(v), k.group) : format_value(v)) + "\n";
   }
   return out;
 }

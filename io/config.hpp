@@ -13,7 +13,10 @@
 
 namespace clatter::io {
 
-using Value = std::variant<std::int64_t, double, bool, std::string>;
+// A list is an array of numbers; with Key::group = g > 1 it is written as an array of g-tuples
+// ([[x, y, z], ...]) and stored flattened.
+using RealList = std::vector<double>;
+using Value = std::variant<std::int64_t, double, bool, std::string, RealList>;
 
 // Inclusive or exclusive numeric bounds; the defaults allow everything finite.
 struct Range {
@@ -29,6 +32,7 @@ struct Key {
   std::string help;       // one line; says the unit when the name does not
   Range range = {};       // numbers only
   std::vector<std::string> choices = {};  // strings only; empty: any string
+  int group = 1;                          // lists only: tuple size (3 for points)
 };
 
 struct Schema {
@@ -51,6 +55,7 @@ class Config {
   double real(std::string_view key) const;
   bool boolean(std::string_view key) const;
   const std::string& string(std::string_view key) const;
+  const RealList& reals(std::string_view key) const;
 
   // Every key with its effective value, as TOML with one comment line of help per key. Parsing
   // it back gives the same Config: this text is what a bank stores as provenance.

@@ -9,6 +9,7 @@
 #include "core/stage_log.hpp"
 #include "jobs/field_job.hpp"
 #include "jobs/run_options.hpp"
+#include "jobs/solve_job.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/log.hpp"
 #include "mpi/session.hpp"
@@ -36,6 +37,16 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
   jobs::add_config_options(*field, field_config);
   field->add_option("-o,--out", field_out, "output HDF5 file")->capture_default_str();
 
+  jobs::ConfigOptions solve_config;
+  std::string solve_out = "raw.h5";
+  double progress_interval_s = 10.0;
+  auto* solve = app.add_subcommand("solve", "FDTD solves around one rigid ellipsoid for the chosen rigid-body "
+                                            "fields, recorded at listener points");
+  jobs::add_config_options(*solve, solve_config);
+  solve->add_option("-o,--out", solve_out, "output HDF5 file of raw time series")->capture_default_str();
+  solve->add_option("--progress-interval", progress_interval_s, "seconds between progress lines (0: none)")
+      ->capture_default_str();
+
   // Every rank parses the same argv, so a usage error is the same everywhere.
   bool exit_now = false;
   mpi::agree(world, [&] {
@@ -61,6 +72,23 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
     }
     Stage stage("field");
     jobs::run_field(world, config, field_out, jobs::command_line(argc, argv));
+  }
+
+  if (solve->parsed()) {
+    auto config = jobs::load_config(world, jobs::solve_schema(), solve_config);
+    if (solve_config.print) {
+      if (session.is_root()) std::fputs(config.to_toml().c_str(), stdout);
+      return kExitOk;
+    }
+    Stage stage("solve");
+    jobs::SolveSpec spec;
+    mpi::agree(world, [&] { spec = jobs::make_solve_spec(config); });
+    auto result = jobs::run_solve(world, spec, progress_interval_s);
+    if (session.is_root()) {
+      Stage write("write");
+      jobs::write_raw(solve_out, spec, result, config, jobs::command_line(argc, argv), session.size());
+      spdlog::info("solve: wrote {}", solve_out);
+    }
   }
 
   if (global.log_view) {

@@ -143,3 +143,26 @@ TEST(Config, MissingFileIsAnInputError) {
   auto m = error_of([] { clatter::io::read_text_file("/nonexistent/clatter.toml"); });
   expect_contains(m, {"/nonexistent/clatter.toml", "cannot open"});
 }
+
+TEST(Config, ListsOfNumbersAndOfPoints) {
+  Schema s{"lists",
+           {{"a.points_m", clatter::io::RealList{1, 0, 0}, "points [m]", {-5.0, 5.0}, {}, 3},
+            {"a.fields", clatter::io::RealList{1, 2}, "field indices", {1, 6}}}};
+  Config c(s);
+  c.merge_toml("[a]\npoints_m = [[1, 2, 3], [0.5, -1, 2]]\nfields = [3]\n", "l.toml");
+  EXPECT_EQ(c.reals("a.points_m"), (clatter::io::RealList{1, 2, 3, 0.5, -1, 2}));
+  EXPECT_EQ(c.reals("a.fields"), (clatter::io::RealList{3}));
+  c.set("a.fields=[4, 5, 6]");
+  EXPECT_EQ(c.reals("a.fields"), (clatter::io::RealList{4, 5, 6}));
+  expect_contains(error_of([&] { c.merge_toml("[a]\npoints_m = [1, 2, 3]\n", "l.toml"); }),
+                  {"l.toml:2", "'a.points_m'", "3-element arrays"});
+  expect_contains(error_of([&] { c.merge_toml("[a]\npoints_m = [[1, 2]]\n", "l.toml"); }), {"3-element arrays"});
+  expect_contains(error_of([&] { c.merge_toml("[a]\npoints_m = [[1, 2, 9]]\n", "l.toml"); }),
+                  {"every element must be in [-5, 5]"});
+  expect_contains(error_of([&] { c.set("a.fields=7"); }), {"expected an array of numbers"});
+  expect_contains(error_of([&] { c.set("a.fields=[0]"); }), {"every element must be in [1, 6]"});
+  Config back(s);
+  back.merge_toml(c.to_toml(), "printed");
+  EXPECT_EQ(back.to_toml(), c.to_toml());
+  EXPECT_NE(c.to_toml().find("points_m = [[1.0, 2.0, 3.0], [0.5, -1.0, 2.0]]"), std::string::npos) << c.to_toml();
+}

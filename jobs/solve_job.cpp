@@ -1,0 +1,293 @@
+#include "jobs/solve_job.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "core/errors.hpp"
+#include "core/stage_log.hpp"
+#include "io/h5.hpp"
+#include "io/provenance.hpp"
+#include "kernels/fdtd/listeners.hpp"
+#include "kernels/fdtd/solver.hpp"
+#include "mpi/cart.hpp"
+#include "mpi/comm.hpp"
+#include "mpi/halo.hpp"
+
+namespace clatter::jobs {
+
+namespace fdtd = kernels::fdtd;
+
+const io::Schema& solve_schema() {
+  static const io::Schema schema{
+      "clatter-bank solve: FDTD pulse solves around one rigid ellipsoid",
+      {
+          {"medium.c_m_s", 343.2, "speed of sound [m/s]", {0.0, 1e5, true}},
+          {"medium.rho_kg_m3", 1.2041, "density of the medium [kg/m^3]", {0.0, 1e5, true}},
+          {"pulse.h_s", 1e-4, "width h of the acceleration pulse psi(t; h), support [-2h, 2h] [s]", {0.0, 1.0, true}},
+          {"object.kind", std::string("ellipsoid"), "ellipsoid (rigid body, fields 1-6) or monopole (a point "
+                                                    "source at the origin, for absorbing-layer checks)",
+           {}, {"ellipsoid", "monopole"}},
+          {"object.a_m", 0.5, "semi-axis A along x [m]", {0.0, 100.0, true}},
+          {"object.b_m", 0.35, "semi-axis B along y [m]", {0.0, 100.0, true}},
+          {"object.c_m", 0.2, "semi-axis C along z [m]", {0.0, 100.0, true}},
+          {"grid.dx_m", 0.025, "cell size [m]", {0.0, 10.0, true}},
+          {"grid.half_width_m", 1.0, "half width of the domain inside the absorbing layer [m]", {0.0, 1e4, true}},
+          {"grid.pml_cells", std::int64_t{8}, "thickness of the perfectly matched layer [cells]", {0, 256}},
+          {"grid.octant", true, "solve x, y, z >= 0 only, with mirror planes (8x less work)"},
+          {"time.dt_s", 1.0 / 96000.0, "time step [s]; CFL limit dx / (c sqrt 3)", {0.0, 1.0, true}},
+          {"time.duration_s", 0.006, "recorded time after t = 0 (the centre of psi) [s]", {0.0, 100.0, true}},
+          {"solve.fields", io::RealList{1, 2, 3, 4, 5, 6},
+           "rigid-body fields: 1-3 translation along x, y, z; 4-6 rotation about x, y, z", {1, 6}},
+          {"listeners.points_m",
+           io::RealList{0.8, 0, 0, 0, 0.8, 0, 0, 0, 0.8, 0.6, 0.5, 0.3, -0.6, 0.5, -0.3},
+           "listener positions [m], ellipsoid centred on the origin", {-1e4, 1e4}, {}, 3},
+          {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
+          {"solver.pml_reflection", 1e-5, "design reflection of the PML grading at normal incidence", {0.0, 1.0, true}},
+      }};
+  return schema;
+}
+
+SolveSpec make_solve_spec(const io::Config& config) {
+  SolveSpec spec;
+  fdtd::Problem& p = spec.problem;
+  p.c_m_s = config.real("medium.c_m_s");
+  p.rho_kg_m3 = config.real("medium.rho_kg_m3");
+  p.h_s = config.real("pulse.h_s");
+  p.dt_s = config.real("time.dt_s");
+  p.cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
+  p.pml_reflection = config.real("solver.pml_reflection");
+  const double dx = config.real("grid.dx_m");
+  const bool monopole = config.string("object.kind") == "monopole";
+  p.body = {config.real("object.a_m"), config.real("object.b_m"), config.real("object.c_m")};
+
+  const double limit = dx / (p.c_m_s * std::sqrt(3.0));
+  if (p.dt_s > limit)
+    throw InputError(fmt::format("config: key 'time.dt_s' = {}: violates the CFL limit dx / (c sqrt 3) = {:.6g} s "
+                                 "(grid.dx_m = {}, medium.c_m_s = {})",
+                                 p.dt_s, limit, dx, p.c_m_s));
+  const double half = config.real("grid.half_width_m");
+  const int n_half = static_cast<int>(std::ceil(half / dx - 1e-9));
+  const int pml = static_cast<int>(config.integer("grid.pml_cells"));
+  p.grid.dx_m = dx;
+  p.grid.pml = pml;
+  p.grid.octant = config.boolean("grid.octant");
+  const int n = p.grid.octant ? n_half + pml : 2 * (n_half + pml);
+  p.grid.n = {n, n, n};
+  if (!monopole) {
+    const std::array<const char*, 3> keys{"object.a_m", "object.b_m", "object.c_m"};
+    const std::array<double, 3> r{p.body.a_m, p.body.b_m, p.body.c_m};
+    for (int a = 0; a < 3; ++a)
+      if (r[a] + dx > n_half * dx)
+        throw InputError(fmt::format("config: key '{}' = {}: the ellipsoid must lie inside the domain with a cell to "
+                                     "spare (grid.half_width_m = {} gives {} cells of {} m)",
+                                     keys[a], r[a], half, n_half, dx));
+    for (double f : config.reals("solve.fields")) {
+      if (f != std::floor(f)) throw InputError(fmt::format("config: key 'solve.fields' has {}: not a field index 1-6", f));
+      spec.fields.push_back(static_cast<int>(f));
+    }
+    if (spec.fields.empty()) throw InputError("config: key 'solve.fields' is empty: choose fields from 1-6");
+  } else {
+    spec.fields = {0};
+  }
+
+  const auto& pts = config.reals("listeners.points_m");
+  if (pts.empty()) throw InputError("config: key 'listeners.points_m' is empty: give at least one point");
+  for (std::size_t i = 0; i + 2 < pts.size(); i += 3) spec.listeners_m.push_back({pts[i], pts[i + 1], pts[i + 2]});
+  for (std::size_t l = 0; l < spec.listeners_m.size(); ++l) {
+    fdtd::Problem probe = p;
+    probe.field = monopole ? 0 : 1;
+    const auto& x = spec.listeners_m[l];
+    if (auto why = fdtd::listener_problem(probe, x))
+      throw InputError(fmt::format("config: key 'listeners.points_m' point {} = [{}, {}, {}]: {}", l + 1, x[0], x[1],
+                                   x[2], *why));
+  }
+  spec.i_time_zero = static_cast<int>(std::ceil(2.0 * p.h_s / p.dt_s - 1e-9));
+  spec.n_samples = spec.i_time_zero + static_cast<int>(std::ceil(config.real("time.duration_s") / p.dt_s)) + 1;
+  return spec;
+}
+
+namespace {
+
+// One listener corner recorded by the rank that owns its cell.
+struct Probe {
+  int listener, corner;
+  long index;  // storage index in the solver's layout
+};
+
+class Progress {
+ public:
+  Progress(double interval_s, long long total_steps, long long cells)
+      : interval_s_(interval_s), total_(total_steps), cells_(cells), start_(Clock::now()), last_(start_) {}
+  void step(long long done, int field, int n_fields) {
+    if (interval_s_ <= 0) return;
+    const auto now = Clock::now();
+    if (std::chrono::duration<double>(now - last_).count() < interval_s_) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double d = static_cast<double>(done), total = static_cast<double>(total_);
+    spdlog::info("solve: field {}/{}, step {}/{} ({:.1f} %), {:.3g} cell-updates/s, ETA {:.1f} s", field, n_fields,
+                 done, total_, 100.0 * d / total, static_cast<double>(cells_) * d / elapsed,
+                 elapsed * (total - d) / std::max(d, 1.0));
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  double interval_s_;
+  long long total_, cells_;
+  Clock::time_point start_, last_;
+};
+
+}  // namespace
+
+SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_interval_s) {
+  const fdtd::Grid& grid = spec.problem.grid;
+  std::optional<mpi::CartTopology> topo;
+  mpi::agree(comm, [&] { topo.emplace(comm, grid.n); });
+  const auto start = topo->local_start(), count = topo->local_count();
+  const fdtd::Box owned{start, {start[0] + count[0], start[1] + count[1], start[2] + count[2]}};
+  mpi::HaloExchange halo(*topo, count);
+  const long long cells = 1LL * grid.n[0] * grid.n[1] * grid.n[2];
+  const int steps = spec.n_samples - 1;
+  spdlog::info("solve: {} grid of {}x{}x{} cells ({:.3g} M) of {} mm, {} ranks as {}x{}x{}, {} steps of {:.4g} us, "
+               "Courant {:.3f}, {} field(s)",
+               grid.octant ? "octant" : "full", grid.n[0], grid.n[1], grid.n[2], static_cast<double>(cells) / 1e6, grid.dx_m * 1e3,
+               mpi::size(comm), topo->dims()[0], topo->dims()[1], topo->dims()[2], steps, spec.problem.dt_s * 1e6,
+               spec.problem.courant(), spec.fields.size());
+
+  SolveResult result;
+  result.cells = cells;
+  Progress progress(progress_interval_s, static_cast<long long>(steps) * static_cast<long long>(spec.fields.size()), cells);
+  const auto t_begin = std::chrono::steady_clock::now();
+  for (std::size_t fi = 0; fi < spec.fields.size(); ++fi) {
+    fdtd::Problem problem = spec.problem;
+    problem.field = spec.fields[fi];
+    std::optional<fdtd::Solver> solver;
+    std::vector<Probe> probes;
+    std::vector<fdtd::Stencil> stencils;
+    {
+      Stage stage("setup");
+      solver.emplace(problem, owned);
+      for (int l = 0; l < static_cast<int>(spec.listeners_m.size()); ++l) {
+        stencils.push_back(fdtd::listener_stencil(problem, spec.listeners_m[static_cast<std::size_t>(l)]));
+        for (int c = 0; c < 8; ++c)
+          if (owned.contains(stencils.back().cell[static_cast<std::size_t>(c)]))
+            probes.push_back({l, c, solver->layout().at(stencils.back().cell[static_cast<std::size_t>(c)])});
+      }
+      if (fi == 0) {
+        const auto& k = solver->counts();
+        spdlog::debug("solve: rank owns {} cells: {} bulk, {} cut, {} solid, {} PML; {:.1f} MiB", k.owned, k.bulk,
+                      k.cut, k.solid, k.pml, static_cast<double>(k.bytes) / 1048576.0);
+      }
+    }
+    std::vector<float> recorded(probes.size() * static_cast<std::size_t>(spec.n_samples));
+    {
+      Stage loop("time loop");
+      for (int n = 0;; ++n) {
+        {
+          Stage s("record");
+          const float* p = solver->pressure();
+          for (std::size_t q = 0; q < probes.size(); ++q)
+            recorded[q * static_cast<std::size_t>(spec.n_samples) + static_cast<std::size_t>(n)] =
+                p[static_cast<std::size_t>(probes[q].index)];
+        }
+        if (n == steps) break;
+        const double t_s = (n - spec.i_time_zero) * problem.dt_s;
+        halo.start(solver->pressure());
+        solver->begin_step();
+        {
+          Stage s("interior");
+          solver->update_bulk(solver->inner_box());
+        }
+        {
+          Stage s("halo wait");
+          halo.finish();
+        }
+        {
+          Stage s("shell, PML, body");
+          for (const auto& b : solver->shell_boxes()) solver->update_bulk(b);
+          solver->finish_step(t_s);
+        }
+        progress.step(static_cast<long long>(fi) * steps + n + 1, static_cast<int>(fi) + 1,
+                      static_cast<int>(spec.fields.size()));
+      }
+    }
+    // Rank 0 collects every recorded corner and interpolates in a fixed order: the result does not
+    // depend on how the grid was split.
+    Stage stage("gather");
+    std::string mine;
+    for (std::size_t q = 0; q < probes.size(); ++q) {
+      const int header[2] = {probes[q].listener, probes[q].corner};
+      mine.append(reinterpret_cast<const char*>(header), sizeof header);
+      mine.append(reinterpret_cast<const char*>(&recorded[q * static_cast<std::size_t>(spec.n_samples)]),
+                  sizeof(float) * static_cast<std::size_t>(spec.n_samples));
+    }
+    auto all = mpi::gather(comm, mine);
+    if (mpi::rank(comm) != 0) continue;
+    const std::size_t ns = static_cast<std::size_t>(spec.n_samples), record = 2 * sizeof(int) + ns * sizeof(float);
+    std::vector<std::array<std::vector<float>, 8>> corners(spec.listeners_m.size());
+    for (const auto& text : all)
+      for (std::size_t off = 0; off + record <= text.size(); off += record) {
+        int header[2];
+        std::memcpy(header, text.data() + off, sizeof header);
+        auto& dst = corners[static_cast<std::size_t>(header[0])][static_cast<std::size_t>(header[1])];
+        dst.resize(ns);
+        std::memcpy(dst.data(), text.data() + off + sizeof header, ns * sizeof(float));
+      }
+    std::vector<float> series(spec.listeners_m.size() * ns);
+    for (std::size_t l = 0; l < corners.size(); ++l)
+      for (std::size_t k = 0; k < ns; ++k) {
+        std::array<float, 8> v{};
+        for (int c = 0; c < 8; ++c) v[static_cast<std::size_t>(c)] = corners[l][static_cast<std::size_t>(c)][k];
+        series[l * ns + k] = static_cast<float>(fdtd::interpolate(stencils[l], v));
+      }
+    result.series.push_back(std::move(series));
+  }
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+  const double updates = static_cast<double>(cells) * steps * static_cast<double>(spec.fields.size());
+  result.cell_updates_per_s = updates / elapsed;
+  spdlog::info("solve: {:.3g} cell-updates in {:.3g} s: {:.3g} cell-updates/s", updates, elapsed,
+               result.cell_updates_per_s);
+  return result;
+}
+
+void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult& result, const io::Config& config,
+               const std::string& command, int n_ranks) {
+  const auto& p = spec.problem;
+  auto file = io::File::create(path);
+  io::write_header(file, kRawFormat, kRawFormatVersion);
+  io::create_group(file, "/solve");
+  const std::string g = "/solve";
+  io::write_attribute<double>(file, g, "c_m_s", p.c_m_s);
+  io::write_attribute<double>(file, g, "rho_kg_m3", p.rho_kg_m3);
+  io::write_attribute<double>(file, g, "h_s", p.h_s);
+  io::write_attribute<double>(file, g, "dt_s", p.dt_s);
+  io::write_attribute<double>(file, g, "dx_m", p.grid.dx_m);
+  io::write_attribute<double>(file, g, "t_first_s", -spec.i_time_zero * p.dt_s);
+  io::write_attribute<std::int32_t>(file, g, "i_time_zero", spec.i_time_zero);
+  io::write_attribute(file, g, "time_origin", std::string_view("t = 0 at the centre of psi(t; h); sample k is at "
+                                                               "t_first_s + k dt_s"));
+  io::write_attribute(file, g, "object", config.string("object.kind"));
+  io::write_attribute<double>(file, g, "a_m", p.body.a_m);
+  io::write_attribute<double>(file, g, "b_m", p.body.b_m);
+  io::write_attribute<double>(file, g, "c_m", p.body.c_m);
+  io::write_attribute<std::int32_t>(file, g, "octant", p.grid.octant ? 1 : 0);
+  io::write_attribute<std::int32_t>(file, g, "grid_cells", p.grid.n[0]);
+  io::write_attribute<std::int32_t>(file, g, "pml_cells", p.grid.pml);
+  io::write_attribute(file, g, "interpolation", std::string_view("trilinear (second order)"));
+  const hsize_t np = spec.listeners_m.size(), ns = static_cast<hsize_t>(spec.n_samples);
+  std::vector<double> xyz;
+  for (const auto& x : spec.listeners_m) xyz.insert(xyz.end(), x.begin(), x.end());
+  io::write_dataset<double>(file, "/listeners/x_m", xyz, {np, 3}, "m");
+  for (std::size_t f = 0; f < spec.fields.size(); ++f) {
+    const int field = spec.fields[f];
+    const char* units = field == 0 ? "Pa/(m^3/s^2)" : field <= 3 ? "Pa/(m/s^2)" : "Pa/(rad/s^2)";
+    io::write_dataset<float>(file, "/fields/p" + std::to_string(field), result.series[f], {np, ns}, units);
+  }
+  io::write_provenance(file, command, config.to_toml(), n_ranks);
+  file.commit();
+}
+
+}  // namespace clatter::jobs

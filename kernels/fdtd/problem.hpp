@@ -1,0 +1,24 @@
+#pragma once
+#include "kernels/fdtd/geometry.hpp"
+#include "kernels/fdtd/grid.hpp"
+
+namespace clatter::kernels::fdtd {
+
+// Everything one FDTD solve needs, in SI units. Built and validated by jobs/solve_job.cpp.
+struct Problem {
+  Grid grid;
+  double c_m_s = 343.2;
+  double rho_kg_m3 = 1.2041;
+  double dt_s = 0;
+  double h_s = 1e-4;             // width of the pulse psi(t; h) driving the source
+  int field = 1;                 // 1..6: rigid-body field of `body` (eq. 9); 0: monopole at the origin, no body
+  Ellipsoid body;
+  int cut_cell_samples = 16;     // samples per cell edge for volume and face fractions
+  double pml_reflection = 1e-5;  // design normal-incidence reflection of the PML grading
+
+  double courant() const { return c_m_s * dt_s / grid.dx_m; }
+  // Mirror sign of this field across the plane normal to `axis`.
+  int parity(int axis) const { return field_parity(field, axis); }
+};
+
+}  // namespace clatter::kernels::fdtd

@@ -1,0 +1,218 @@
+// FDTD physics against independent references (docs/validation.md), under MPI.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "jobs/solve_job.hpp"
+#include "mpi/comm.hpp"
+#include "tests/reference/sphere_exact.hpp"
+
+using namespace clatter;
+
+namespace {
+
+bool root() { return mpi::rank(MPI_COMM_WORLD) == 0; }
+
+std::string exact(double x) {  // every digit, for --set
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", x);
+  return text;
+}
+
+jobs::SolveResult solve(io::Config& config, jobs::SolveSpec* spec_out = nullptr) {
+  auto spec = jobs::make_solve_spec(config);
+  auto result = jobs::run_solve(MPI_COMM_WORLD, spec, 0.0);
+  if (spec_out) *spec_out = spec;
+  return result;
+}
+
+// Sphere of radius a in octant mode with `cells_per_radius`; listeners at (r, theta) in the xz plane.
+io::Config sphere_config(double cells_per_radius, const std::string& fields) {
+  io::Config c(jobs::solve_schema());
+  const double a = 0.1, dx = a / cells_per_radius;
+  c.set("object.a_m=0.1");
+  c.set("object.b_m=0.1");
+  c.set("object.c_m=0.1");
+  c.set("grid.dx_m=" + exact(dx));
+  c.set("grid.half_width_m=0.33");
+  c.set("time.dt_s=" + exact(0.5 * dx / 343.2));
+  c.set("time.duration_s=0.0022");
+  c.set("solve.fields=" + fields);
+  c.set("listeners.points_m=[[0, 0, 0.15], [0.1414214, 0, 0.1414214], [0.2819078, 0, 0.1026060]]");
+  return c;
+}
+
+struct Error {
+  std::vector<double> per_listener;  // relative L2
+  double peak = 0;
+};
+
+Error compare_with_exact(const jobs::SolveSpec& spec, const std::vector<float>& series) {
+  const reference::TranslatingSphere exact{0.1, spec.problem.c_m_s, spec.problem.rho_kg_m3, spec.problem.h_s};
+  Error e;
+  const std::size_t ns = static_cast<std::size_t>(spec.n_samples);
+  for (std::size_t l = 0; l < spec.listeners_m.size(); ++l) {
+    const auto& x = spec.listeners_m[l];
+    const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    double num = 0, den = 0;
+    for (std::size_t k = 0; k < ns; ++k) {
+      const double t = (static_cast<double>(k) - spec.i_time_zero) * spec.problem.dt_s;
+      const double want = exact.pressure(r, x[2] / r, t), got = series[l * ns + k];
+      num += (got - want) * (got - want);
+      den += want * want;
+      e.peak = std::max(e.peak, std::abs(want));
+    }
+    e.per_listener.push_back(std::sqrt(num / den));
+  }
+  return e;
+}
+
+}  // namespace
+
+TEST(FdtdSphere, TranslationMatchesTheExactDipoleAndConverges) {
+  jobs::SolveSpec coarse_spec, fine_spec;
+  auto coarse_cfg = sphere_config(10, "[3]");
+  auto fine_cfg = sphere_config(20, "[3]");
+  auto coarse = solve(coarse_cfg, &coarse_spec);
+  auto fine = solve(fine_cfg, &fine_spec);
+  if (!root()) return;
+  const auto ec = compare_with_exact(coarse_spec, coarse.series[0]);
+  const auto ef = compare_with_exact(fine_spec, fine.series[0]);
+  for (std::size_t l = 0; l < ef.per_listener.size(); ++l) {
+    const double order = std::log2(ec.per_listener[l] / ef.per_listener[l]);
+    std::printf("listener %zu: relative L2 error %.4f at 10 cells/radius, %.4f at 20: observed order %.2f\n", l,
+                ec.per_listener[l], ef.per_listener[l], order);
+    EXPECT_LT(ef.per_listener[l], 0.03) << "listener " << l;
+    EXPECT_GT(order, 1.0) << "listener " << l;
+  }
+}
+
+TEST(FdtdSphere, RotationRadiatesAlmostNothing) {
+  jobs::SolveSpec spec;
+  auto config = sphere_config(20, "[3, 4, 5, 6]");
+  // Off every symmetry plane, so no field vanishes here by symmetry alone.
+  config.set("listeners.points_m=[[0.09, 0.08, 0.07], [0.12, -0.1, 0.05], [-0.05, 0.15, 0.1]]");
+  auto result = solve(config, &spec);
+  if (!root()) return;
+  double translating_peak = 0;
+  for (float v : result.series[0]) translating_peak = std::max(translating_peak, double(std::abs(v)));
+  for (std::size_t f = 1; f < 4; ++f) {
+    double peak = 0;
+    for (float v : result.series[f]) peak = std::max(peak, double(std::abs(v)));
+    // Field 4-6 pressures are per unit angular acceleration; at r ~ a the comparison is per a.
+    const double ratio = peak / (translating_peak * 0.1);
+    std::printf("field %d: peak %.3g Pa/(rad/s^2), %.3g of the translating peak x a\n", spec.fields[f], peak, ratio);
+    EXPECT_LT(ratio, 0.01) << "field " << spec.fields[f];
+  }
+}
+
+namespace {
+
+// A small non-spherical ellipsoid, all six fields, listeners in all eight octants and near the planes.
+io::Config ellipsoid_config(bool octant) {
+  io::Config c(jobs::solve_schema());
+  c.set("object.a_m=0.1");
+  c.set("object.b_m=0.07");
+  c.set("object.c_m=0.05");
+  c.set("grid.dx_m=0.01");
+  c.set("grid.half_width_m=0.2");
+  c.set("grid.pml_cells=6");
+  c.set(std::string("grid.octant=") + (octant ? "true" : "false"));
+  c.set("time.dt_s=" + exact(0.5 * 0.01 / 343.2));
+  c.set("time.duration_s=0.0008");
+  c.set("solve.fields=[1, 2, 3, 4, 5, 6]");
+  c.set("listeners.points_m=[[0.15, 0.05, 0.03], [-0.12, 0.09, -0.06], [0.04, -0.16, 0.07], [-0.05, -0.05, -0.15], "
+        "[0.003, 0.12, 0.1], [0.13, -0.002, -0.11], [0.0, 0.0, 0.17], [-0.11, 0.11, 0.004]]");
+  return c;
+}
+
+// Largest |a - b| over every field and sample; 0 means bit-identical (for finite values).
+double max_difference(const jobs::SolveResult& a, const jobs::SolveResult& b) {
+  double d = 0;
+  for (std::size_t f = 0; f < a.series.size(); ++f)
+    for (std::size_t k = 0; k < a.series[f].size(); ++k) {
+      if (std::memcmp(&a.series[f][k], &b.series[f][k], sizeof(float)) != 0) d = std::max(d, 1e-300);
+      d = std::max(d, double(std::abs(a.series[f][k] - b.series[f][k])));
+    }
+  return d;
+}
+
+double peak(const jobs::SolveResult& r) {
+  double p = 0;
+  for (const auto& s : r.series)
+    for (float v : s) p = std::max(p, double(std::abs(v)));
+  return p;
+}
+
+}  // namespace
+
+TEST(FdtdSymmetry, OctantSolveEqualsFullSolveBitForBit) {
+  auto full_cfg = ellipsoid_config(false), octant_cfg = ellipsoid_config(true);
+  auto full = solve(full_cfg);
+  auto octant = solve(octant_cfg);
+  if (!root()) return;
+  ASSERT_EQ(full.series.size(), 6u);
+  std::printf("octant vs full: largest difference %.3g (peak %.3g), %.3g x fewer cells\n",
+              max_difference(full, octant), peak(full), double(full.cells) / double(octant.cells));
+  EXPECT_GT(peak(full), 0.0);
+  EXPECT_EQ(max_difference(full, octant), 0.0);
+}
+
+TEST(FdtdRanks, OneTwoAndAllRanksGiveIdenticalBits) {
+  // One mpiexec: the same full-domain solve on 1 rank, on 2 ranks and on all ranks.
+  auto config = ellipsoid_config(false);
+  config.set("solve.fields=[2, 5]");
+  const int me = mpi::rank(MPI_COMM_WORLD), n = mpi::size(MPI_COMM_WORLD);
+  MPI_Comm pair = MPI_COMM_NULL;
+  MPI_Comm_split(MPI_COMM_WORLD, me < 2 ? 0 : MPI_UNDEFINED, me, &pair);
+  jobs::SolveResult one, two;
+  const auto spec = jobs::make_solve_spec(config);
+  auto all = jobs::run_solve(MPI_COMM_WORLD, spec, 0.0);
+  if (pair != MPI_COMM_NULL && n >= 2) {
+    two = jobs::run_solve(pair, spec, 0.0);
+    MPI_Comm_free(&pair);
+  }
+  if (me == 0) one = jobs::run_solve(MPI_COMM_SELF, spec, 0.0);
+  if (!root()) return;
+  std::printf("1 vs %d ranks: largest difference %.3g; 1 vs 2 ranks: %.3g (peak %.3g)\n", n,
+              max_difference(one, all), n >= 2 ? max_difference(one, two) : 0.0, peak(one));
+  EXPECT_GT(peak(one), 0.0);
+  EXPECT_EQ(max_difference(one, all), 0.0);
+  if (n >= 2) {
+    EXPECT_EQ(max_difference(one, two), 0.0);
+  }
+}
+
+TEST(FdtdPml, MonopoleReflectionBelowMinus40dB) {
+  // The same monopole in a small domain and in one large enough that its boundary is not heard
+  // within the window: their difference at a listener is what the small domain's PML reflected.
+  auto config = [](double half_width) {
+    io::Config c(jobs::solve_schema());
+    c.set("object.kind=monopole");
+    c.set("grid.dx_m=0.01");
+    c.set("grid.half_width_m=" + exact(half_width));
+    c.set("time.dt_s=" + exact(0.5 * 0.01 / 343.2));
+    c.set("time.duration_s=0.0024");
+    // On an axis, and towards an edge and a corner of the box (oblique incidence).
+    c.set("listeners.points_m=[[0.17, 0.02, 0.02], [0.15, 0.14, 0.02], [0.14, 0.14, 0.14]]");
+    return c;
+  };
+  auto small_cfg = config(0.2), large_cfg = config(0.65);
+  jobs::SolveSpec spec;
+  auto small = solve(small_cfg, &spec);
+  auto large = solve(large_cfg);
+  if (!root()) return;
+  const std::size_t ns = static_cast<std::size_t>(spec.n_samples);
+  for (std::size_t l = 0; l < spec.listeners_m.size(); ++l) {
+    double direct = 0, reflected = 0;
+    for (std::size_t k = 0; k < ns; ++k) {
+      direct = std::max(direct, double(std::abs(large.series[0][l * ns + k])));
+      reflected = std::max(reflected, double(std::abs(small.series[0][l * ns + k] - large.series[0][l * ns + k])));
+    }
+    const double db = 20 * std::log10(reflected / direct);
+    std::printf("listener %zu: PML reflection %.1f dB (8 cells)\n", l, db);
+    EXPECT_LT(db, -40.0) << "listener " << l;
+  }
+}
