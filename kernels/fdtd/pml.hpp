@@ -26,6 +26,7 @@ class Pml {
     std::array<std::vector<float>, 3> v;      // face velocity, (count + e_a) faces per damped axis
     std::array<std::vector<float>, 3> split_now, split_old;  // p_a at t_n and t_(n-1)
   };
+  template <int D>
   void update_region(Region& r, const float* p_now, float* p_next);
 
   const Layout& layout_;
