@@ -182,6 +182,11 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
         const auto& k = solver->counts();
         spdlog::debug("solve: rank owns {} cells: {} bulk, {} cut, {} solid, {} PML; {:.1f} MiB", k.owned, k.bulk,
                       k.cut, k.solid, k.pml, static_cast<double>(k.bytes) / 1048576.0);
+        double bytes = static_cast<double>(k.bytes), total = 0;
+        mpi::check(MPI_Allreduce(&bytes, &total, 1, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
+        const fdtd::Box in = grid.interior();
+        spdlog::info("solve: memory {:.1f} MiB: {:.1f} bytes per cell, {:.1f} per cell outside the PML", total / 1048576.0,
+                     total / static_cast<double>(cells), total / static_cast<double>(in.cells()));
       }
     }
     std::vector<float> recorded(probes.size() * static_cast<std::size_t>(spec.n_samples));
