@@ -36,7 +36,9 @@ test: build
 
 bench: build
 	mkdir -p out/bench
-	$(BUILD)/bin/clatter-bench --benchmark_out=out/bench/bench.json --benchmark_out_format=json
+	$(BUILD)/bin/clatter-bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
+	    --benchmark_out=out/bench/bench.json --benchmark_out_format=json
+	bench/fdtd.sh $(BUILD) 3 | tee out/bench/fdtd.txt
 
 clean:
 	rm -rf build out
