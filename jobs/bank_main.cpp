@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
+#include <optional>
 
 #include "core/build_info.hpp"
 #include "core/errors.hpp"
@@ -64,29 +65,31 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
     mpi::configure_logging(session.rank(), session.size(), {global.log_all_ranks, global.log_level});
   });
 
+  // The job's config, or nullopt when --print-config asked only to print it.
+  auto config_for = [&](const io::Schema& schema, const jobs::ConfigOptions& options) -> std::optional<io::Config> {
+    auto config = jobs::load_config(world, schema, options);
+    if (!options.print) return config;
+    if (session.is_root()) std::fputs(config.to_toml().c_str(), stdout);
+    return std::nullopt;
+  };
+
   if (field->parsed()) {
-    auto config = jobs::load_config(world, jobs::field_schema(), field_config);
-    if (field_config.print) {
-      if (session.is_root()) std::fputs(config.to_toml().c_str(), stdout);
-      return kExitOk;
-    }
+    auto config = config_for(jobs::field_schema(), field_config);
+    if (!config) return kExitOk;
     Stage stage("field");
-    jobs::run_field(world, config, field_out, jobs::command_line(argc, argv));
+    jobs::run_field(world, *config, field_out, jobs::command_line(argc, argv));
   }
 
   if (solve->parsed()) {
-    auto config = jobs::load_config(world, jobs::solve_schema(), solve_config);
-    if (solve_config.print) {
-      if (session.is_root()) std::fputs(config.to_toml().c_str(), stdout);
-      return kExitOk;
-    }
+    auto config = config_for(jobs::solve_schema(), solve_config);
+    if (!config) return kExitOk;
     Stage stage("solve");
     jobs::SolveSpec spec;
-    mpi::agree(world, [&] { spec = jobs::make_solve_spec(config); });
+    mpi::agree(world, [&] { spec = jobs::make_solve_spec(*config); });
     auto result = jobs::run_solve(world, spec, progress_interval_s);
     if (session.is_root()) {
       Stage write("write");
-      jobs::write_raw(solve_out, spec, result, config, jobs::command_line(argc, argv), session.size());
+      jobs::write_raw(solve_out, spec, result, *config, jobs::command_line(argc, argv), session.size());
       spdlog::info("solve: wrote {}", solve_out);
     }
   }

@@ -10,6 +10,7 @@
 #include "core/stage_log.hpp"
 #include "io/h5.hpp"
 #include "io/provenance.hpp"
+#include "jobs/run_options.hpp"
 #include "kernels/pulse.hpp"
 #include "mpi/cart.hpp"
 #include "mpi/comm.hpp"
@@ -17,16 +18,16 @@
 namespace clatter::jobs {
 
 const io::Schema& field_schema() {
-  static const io::Schema schema{
-      "clatter-bank field: free-field pressure of a psi-driven point monopole on a distributed grid",
-      {
-          {"medium.c_m_s", 343.2, "speed of sound [m/s]", {0.0, 1e5, true}},
-          {"medium.rho_kg_m3", 1.2041, "density of the medium [kg/m^3]", {0.0, 1e5, true}},
-          {"pulse.h_s", 1e-4, "width parameter h of the pulse psi(t; h), support [-2h, 2h] [s]", {0.0, 1.0, true}},
-          {"grid.n_cells", std::int64_t{64}, "cells along each axis of the cubic grid", {2, 4096}},
-          {"grid.dx_m", 0.01, "cell size [m]; the monopole sits at the grid's centre", {0.0, 10.0, true}},
-          {"field.t_s", 6e-4, "time of the snapshot [s]; psi is centred on t = 0", {-1.0, 10.0}},
-      }};
+  static const io::Schema schema = [] {
+    io::Schema s{"clatter-bank field: free-field pressure of a psi-driven point monopole on a distributed grid",
+                 medium_and_pulse_keys()};
+    s.keys.insert(s.keys.end(), {
+        {"grid.n_cells", std::int64_t{64}, "cells along each axis of the cubic grid", {2, 4096}},
+        {"grid.dx_m", 0.01, "cell size [m]; the monopole sits at the grid's centre", {0.0, 10.0, true}},
+        {"field.t_s", 6e-4, "time of the snapshot [s]; psi is centred on t = 0", {-1.0, 10.0}},
+    });
+    return s;
+  }();
   return schema;
 }
 

@@ -30,6 +30,9 @@ void add_global_options(CLI::App& app, GlobalOptions& options);
 // everywhere (as a CollectiveError with exit code 2) and no rank is left waiting.
 io::Config load_config(MPI_Comm comm, const io::Schema& schema, const ConfigOptions& options);
 
+// Schema keys every acoustic job shares: medium.c_m_s, medium.rho_kg_m3, pulse.h_s.
+std::vector<io::Key> medium_and_pulse_keys();
+
 // The command line as one string, for provenance.
 std::string command_line(int argc, char** argv);
 

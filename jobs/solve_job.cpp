@@ -10,6 +10,7 @@
 #include "core/stage_log.hpp"
 #include "io/h5.hpp"
 #include "io/provenance.hpp"
+#include "jobs/run_options.hpp"
 #include "kernels/fdtd/float_mode.hpp"
 #include "kernels/fdtd/listeners.hpp"
 #include "kernels/fdtd/solver.hpp"
@@ -22,12 +23,9 @@ namespace clatter::jobs {
 namespace fdtd = kernels::fdtd;
 
 const io::Schema& solve_schema() {
-  static const io::Schema schema{
-      "clatter-bank solve: FDTD pulse solves around one rigid ellipsoid",
-      {
-          {"medium.c_m_s", 343.2, "speed of sound [m/s]", {0.0, 1e5, true}},
-          {"medium.rho_kg_m3", 1.2041, "density of the medium [kg/m^3]", {0.0, 1e5, true}},
-          {"pulse.h_s", 1e-4, "width h of the acceleration pulse psi(t; h), support [-2h, 2h] [s]", {0.0, 1.0, true}},
+  static const io::Schema schema = [] {
+    io::Schema s{"clatter-bank solve: FDTD pulse solves around one rigid ellipsoid", medium_and_pulse_keys()};
+    s.keys.insert(s.keys.end(), {
           {"object.kind", std::string("ellipsoid"), "ellipsoid (rigid body, fields 1-6) or monopole (a point "
                                                     "source at the origin, for absorbing-layer checks)",
            {}, {"ellipsoid", "monopole"}},
@@ -47,7 +45,9 @@ const io::Schema& solve_schema() {
            "listener positions [m], ellipsoid centred on the origin", {-1e4, 1e4}, {}, 3},
           {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
           {"solver.pml_reflection", 1e-5, "design reflection of the PML grading at normal incidence", {0.0, 1.0, true}},
-      }};
+    });
+    return s;
+  }();
   return schema;
 }
 
