@@ -1,0 +1,64 @@
+#include "kernels/pan/fit.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace clatter::kernels::pan {
+
+Fitter::Fitter(std::vector<double> radii_m, std::vector<int> shift_steps, int terms, std::size_t length)
+    : radii_m_(std::move(radii_m)), shift_(std::move(shift_steps)), terms_(terms), wavelet_(length) {
+  const int m = static_cast<int>(radii_m_.size());
+  if (m < terms || terms < 1 || shift_.size() != radii_m_.size())
+    throw std::invalid_argument("PAN fit needs at least as many radii as series terms");
+  Eigen::MatrixXd v(m, terms);
+  for (int i = 0; i < m; ++i)
+    for (int k = 0; k < terms; ++k) v(i, k) = std::pow(radii_m_[static_cast<std::size_t>(i)], -(k + 1));
+  const Eigen::MatrixXd p = v.completeOrthogonalDecomposition().pseudoInverse();  // N x M
+  pinv_.resize(static_cast<std::size_t>(terms) * static_cast<std::size_t>(m));
+  for (int k = 0; k < terms; ++k)
+    for (int i = 0; i < m; ++i) pinv_[static_cast<std::size_t>(k * m + i)] = p(k, i);
+}
+
+SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon) const {
+  const std::size_t m = radii_m_.size(), n = wavelet_.length();
+  if (series.size() != m) throw std::invalid_argument("PAN fit: one series per radius");
+  std::vector<std::vector<double>> coef(m, std::vector<double>(n, 0.0));
+  std::vector<double> peak(m, 0.0);
+  for (std::size_t i = 0; i < m; ++i) {
+    // Shift by R_i / c = K_i steps; past the end of the record the signal has died away (zero).
+    const std::size_t k0 = static_cast<std::size_t>(shift_[i]);
+    for (std::size_t t = 0; t < n && k0 + t < n_samples; ++t) coef[i][t] = series[i][k0 + t];
+    wavelet_.forward(coef[i]);
+    for (double c : coef[i]) peak[i] = std::max(peak[i], std::abs(c));
+  }
+  SparseTerms out;
+  for (std::size_t j = 0; j < n; ++j) {
+    bool keep = false;
+    for (std::size_t i = 0; i < m && !keep; ++i) keep = peak[i] > 0 && std::abs(coef[i][j]) >= epsilon * peak[i];
+    if (!keep) continue;
+    out.index.push_back(static_cast<std::uint32_t>(j));
+    for (int k = 0; k < terms_; ++k) {
+      double q = 0;
+      for (std::size_t i = 0; i < m; ++i) q += pinv_[static_cast<std::size_t>(k) * m + i] * coef[i][j];
+      out.value.push_back(static_cast<float>(q));
+    }
+  }
+  return out;
+}
+
+void accumulate(const SparseTerms& terms, int n_terms, double radius_m, double weight, std::vector<double>& coefficients) {
+  std::vector<double> scale(static_cast<std::size_t>(n_terms));
+  for (int k = 0; k < n_terms; ++k) scale[static_cast<std::size_t>(k)] = weight * std::pow(radius_m, -(k + 1));
+  for (std::size_t e = 0; e < terms.index.size(); ++e) {
+    const std::size_t j = terms.index[e];
+    if (j >= coefficients.size()) continue;  // Algorithm 1: coarser reconstructions drop the finest levels
+    double s = 0;
+    for (int k = 0; k < n_terms; ++k)
+      s += scale[static_cast<std::size_t>(k)] * terms.value[e * static_cast<std::size_t>(n_terms) + static_cast<std::size_t>(k)];
+    coefficients[j] += s;
+  }
+}
+
+}  // namespace clatter::kernels::pan

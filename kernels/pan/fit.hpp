@@ -1,0 +1,44 @@
+#pragma once
+// The PAN fit of Chadwick et al. 2012, section 4.1, for one direction and one field:
+//   p(R_i, t + R_i/c) = sum_{k=1..N} R_i^-k q_k(t)                                   (13)
+// transformed to the wavelet basis and solved coefficient by coefficient,
+//   p^_i^j = sum_k R_i^-k q^_k^j   (M x N least squares, one pseudo-inverse for all j)  (14)
+// keeping coefficient j iff |p^_i^j| >= eps ||p^_i||_inf for some radius i.
+// The radii are whole numbers of time steps, R_i = K_i c dt, so the shift is exact.
+#include <cstdint>
+#include <vector>
+
+#include "kernels/pan/wavelet.hpp"
+
+namespace clatter::kernels::pan {
+
+// Sparse wavelet coefficients of q_1..q_N in one direction.
+struct SparseTerms {
+  std::vector<std::uint32_t> index;  // kept j, ascending
+  std::vector<float> value;          // [kept][N]: q^_1^j .. q^_N^j
+};
+
+class Fitter {
+ public:
+  // radii_m[i] = shift_steps[i] * c * dt; `length` (a power of two) is T, the wavelet length.
+  Fitter(std::vector<double> radii_m, std::vector<int> shift_steps, int terms, std::size_t length);
+
+  // series[i]: p(R_i, t_n) for n = 0 .. n_samples-1 (t_n = t_first + n dt).
+  SparseTerms fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon) const;
+
+  int terms() const { return terms_; }
+  std::size_t length() const { return wavelet_.length(); }
+
+ private:
+  std::vector<double> radii_m_;
+  std::vector<int> shift_;
+  int terms_;
+  std::vector<double> pinv_;  // [N][M]
+  Wavelet wavelet_;
+};
+
+// Adds w * sum_k R^-k q^_k into `coefficients` (length T): the wavelet coefficients of the
+// shifted pressure p(R, t + R/c) contributed by one direction vertex with weight w.
+void accumulate(const SparseTerms& terms, int n_terms, double radius_m, double weight, std::vector<double>& coefficients);
+
+}  // namespace clatter::kernels::pan

@@ -1,0 +1,162 @@
+// The PAN fit and evaluation against fields built exactly from the series (8), so the reference
+// is known in closed form (docs/validation.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "kernels/fdtd/geometry.hpp"
+#include "kernels/pan/directions.hpp"
+#include "kernels/pan/field.hpp"
+#include "kernels/pulse.hpp"
+
+using namespace clatter::kernels::pan;
+
+namespace {
+constexpr double kC = 343.2, kDt = 1.0 / 96000, kH = 1e-4;
+
+// q_k of a direction: smooth pulses whose shape depends linearly on the gnomonic coordinates.
+double q(int k, const std::array<double, 3>& d, double t) {
+  const double s = d[0] + d[1] + d[2], u = d[0] / s, v = d[1] / s;
+  const double amp = k == 1 ? 1.0 + 0.5 * u - 0.3 * v : 0.2 - 0.1 * u + 0.4 * v;
+  return amp * clatter::kernels::pulse(t - (k == 1 ? 0.0 : 1e-4), kH);
+}
+
+// p(R, d, t) exactly of the form (8) with N = 2.
+double p_exact(const std::array<double, 3>& d, double r, double t) {
+  const double tr = t - r / kC;
+  return q(1, d, tr) / r + q(2, d, tr) / (r * r);
+}
+
+struct Built {
+  ProxyField field;
+  std::vector<int> shifts;
+};
+
+Built build(double epsilon, int field_index = 1) {
+  const std::vector<int> shifts = {180, 230, 300, 400, 550};  // radii 0.64 .. 1.97 m, whole steps
+  std::vector<double> radii;
+  for (int k : shifts) radii.push_back(k * kC * kDt);
+  const int i0 = 20;  // t = 0 at sample 20
+  const std::size_t n_samples = 550 + 200;
+  const std::size_t length = next_power_of_two(n_samples - 180);
+  Fitter fitter(radii, shifts, 2, length);
+  ProxyField f;
+  f.field = field_index;
+  f.terms = 2;
+  f.length = length;
+  f.dt_s = kDt;
+  f.t_first_s = -i0 * kDt;
+  f.c_m_s = kC;
+  for (const auto& d : direction_vertices()) {
+    std::vector<std::vector<float>> series(radii.size(), std::vector<float>(n_samples));
+    std::vector<const float*> ptr;
+    for (std::size_t i = 0; i < radii.size(); ++i) {
+      for (std::size_t n = 0; n < n_samples; ++n)
+        series[i][n] = static_cast<float>(p_exact(d, radii[i], (static_cast<double>(n) - i0) * kDt));
+      ptr.push_back(series[i].data());
+    }
+    f.directions.push_back(fitter.fit(ptr, n_samples, epsilon));
+  }
+  return {f, shifts};
+}
+
+double relative_l2(const Series& s, const std::array<double, 3>& x, double sign = 1.0) {
+  const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+  const std::array<double, 3> d{std::abs(x[0]) / r, std::abs(x[1]) / r, std::abs(x[2]) / r};
+  double num = 0, den = 0;
+  for (std::size_t n = 0; n < s.p.size(); ++n) {
+    const double want = sign * p_exact(d, r, s.t0_s + static_cast<double>(n) * s.dt_s);
+    num += (s.p[n] - want) * (s.p[n] - want);
+    den += want * want;
+  }
+  return std::sqrt(num / den);
+}
+}  // namespace
+
+TEST(PanDirections, OctantTriangulation) {
+  ASSERT_EQ(direction_vertices().size(), 45u);
+  ASSERT_EQ(direction_triangles().size(), 64u);
+  for (const auto& v : direction_vertices()) EXPECT_NEAR(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], 1.0, 1e-15);
+  for (int i = 0; i < 45; ++i) {  // a vertex locates onto itself
+    const auto w = locate_direction(direction_vertices()[static_cast<std::size_t>(i)]);
+    double at_i = 0, sum = 0;
+    for (int c = 0; c < 3; ++c) {
+      sum += w.weight[c];
+      if (w.vertex[c] == i) at_i += w.weight[c];
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+    EXPECT_NEAR(at_i, 1.0, 1e-12) << i;
+  }
+}
+
+TEST(PanFit, ExactSeriesIsRecoveredAtAHeldOutRadiusAndDirection) {
+  const auto b = build(0.0);
+  // Between the fitted radii and far outside them; a direction between vertices.
+  for (double r : {0.9, 3.0}) {
+    const std::array<double, 3> d{0.37, 0.52, 0.77};
+    const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const std::array<double, 3> x{r * d[0] / n, r * d[1] / n, r * d[2] / n};
+    const double err = relative_l2(evaluate(b.field, x), x);
+    // q is linear in the gnomonic coordinates, so barycentric interpolation is exact; what is
+    // left is float storage of the series.
+    EXPECT_LT(err, 1e-5) << "r = " << r;
+  }
+}
+
+TEST(PanFit, ThresholdKeepsFewCoefficientsAndStaysAccurate) {
+  const auto full = build(0.0), sparse = build(0.01);
+  std::size_t kept_full = 0, kept_sparse = 0;
+  for (std::size_t i = 0; i < full.field.directions.size(); ++i) {
+    kept_full += full.field.directions[i].index.size();
+    kept_sparse += sparse.field.directions[i].index.size();
+  }
+  EXPECT_LT(kept_sparse * 4, kept_full);
+  const std::array<double, 3> x{0.5, 0.6, 0.7};
+  EXPECT_LT(relative_l2(evaluate(sparse.field, x), x), 0.02);
+}
+
+TEST(PanField, OctantSymmetriesFollowTheFieldParity) {
+  for (int field = 1; field <= 6; ++field) {
+    const auto b = build(0.0, field);
+    const std::array<double, 3> x{0.61, 0.42, 0.83};
+    const Series base = evaluate(b.field, x);
+    for (int m = 1; m < 8; ++m) {
+      std::array<double, 3> y = x;
+      double sign = 1;
+      for (int a = 0; a < 3; ++a)
+        if (m & (1 << a)) {
+          y[a] = -y[a];
+          sign *= clatter::kernels::fdtd::field_parity(field, a);
+        }
+      const Series s = evaluate(b.field, y);
+      ASSERT_EQ(s.p.size(), base.p.size());
+      for (std::size_t n = 0; n < s.p.size(); ++n) ASSERT_EQ(s.p[n], sign * base.p[n]) << field << " " << m;
+    }
+  }
+}
+
+TEST(PanField, ScalingLawMatchesEquation10) {
+  for (int field : {2, 5}) {
+    const auto b = build(0.0, field);
+    const double beta = 0.37;
+    const std::array<double, 3> x{0.3, 0.25, 0.2}, y{x[0] / beta, x[1] / beta, x[2] / beta};
+    const Series scaled = evaluate(b.field, x, beta), unscaled = evaluate(b.field, y);
+    const double power = field <= 3 ? beta : beta * beta;
+    ASSERT_EQ(scaled.p.size(), unscaled.p.size());
+    EXPECT_NEAR(scaled.dt_s, beta * unscaled.dt_s, 1e-18);
+    EXPECT_NEAR(scaled.t0_s, beta * unscaled.t0_s, 1e-15);
+    for (std::size_t n = 0; n < scaled.p.size(); ++n)
+      EXPECT_NEAR(scaled.p[n], power * unscaled.p[n], 1e-12 * std::abs(power * unscaled.p[n]) + 1e-300);
+  }
+}
+
+TEST(PanField, Algorithm1ReconstructsNearTheOutputRate) {
+  const auto b = build(0.0);
+  const std::array<double, 3> x{0.6, 0.5, 0.7};
+  const Series full = evaluate(b.field, x);
+  const Series low = evaluate(b.field, x, 1.0, 20000.0);  // 96 kHz -> 48 kHz -> 24 kHz (within 2x of 20 kHz)
+  EXPECT_NEAR(1.0 / low.dt_s, 24000.0, 1e-6);
+  EXPECT_EQ(low.p.size() * 4, full.p.size());
+  // The coarse series follows the smooth signal (pulse content is below 10 kHz).
+  EXPECT_LT(relative_l2(low, x), 0.05);
+}
