@@ -47,6 +47,8 @@ hid_t native_type() {
   if constexpr (std::is_same_v<T, std::uint8_t>) return H5T_NATIVE_UINT8;
   if constexpr (std::is_same_v<T, std::uint32_t>) return H5T_NATIVE_UINT32;
   if constexpr (std::is_same_v<T, std::uint64_t>) return H5T_NATIVE_UINT64;
+  if constexpr (std::is_same_v<T, std::int16_t>) return H5T_NATIVE_INT16;
+  if constexpr (std::is_same_v<T, std::uint16_t>) return H5T_NATIVE_UINT16;
 }
 
 template <class T>
@@ -213,12 +215,24 @@ void File::commit() {
 
 template <Element T>
 void write_dataset_block(File& file, const std::string& name, const Dims& global_dims, const Dims& offset,
-                         const Dims& count, std::span<const T> data, std::string_view units) {
+                         const Dims& count, std::span<const T> data, std::string_view units, bool compress) {
   if (offset.size() != global_dims.size() || count.size() != global_dims.size() || data.size() != element_count(count))
     throw std::invalid_argument(file.path() + ": dataset '" + name + "': block does not match its data");
   Handle file_space(H5Screate_simple(static_cast<int>(global_dims.size()), global_dims.data(), nullptr), H5Sclose);
   auto lcpl = link_create_plist();
-  Handle dset(H5Dcreate2(file.id(), name.c_str(), native_type<T>(), file_space.get(), lcpl.get(), H5P_DEFAULT,
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  if (compress && element_count(global_dims) > 0) {
+    if (file.parallel()) throw std::logic_error(file.path() + ": compressed datasets are written serially");
+    // Chunks of at most 2^18 elements along the first axis: small enough to cache, big enough to compress.
+    Dims chunk = global_dims;
+    const hsize_t rest = element_count(global_dims) / global_dims[0];
+    chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(global_dims[0], (hsize_t{1} << 18) / std::max<hsize_t>(rest, 1)));
+    H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data());
+    H5Pset_fletcher32(dcpl.get());
+    H5Pset_shuffle(dcpl.get());
+    H5Pset_deflate(dcpl.get(), 6);
+  }
+  Handle dset(H5Dcreate2(file.id(), name.c_str(), native_type<T>(), file_space.get(), lcpl.get(), dcpl.get(),
                          H5P_DEFAULT),
               H5Dclose);
   if (dset.get() < 0) fail(file.path(), "cannot create dataset '" + name + "'");
@@ -240,12 +254,12 @@ void write_dataset_block(File& file, const std::string& name, const Dims& global
 
 template <Element T>
 void write_dataset(File& file, const std::string& name, std::span<const T> data, const Dims& dims,
-                   std::string_view units) {
+                   std::string_view units, bool compress) {
   // On a parallel file rank 0's copy is the one written; the call stays collective.
   const bool writer = comm_rank(file.comm()) == 0;
   Dims count = writer ? dims : Dims(dims.size(), 0);
   write_dataset_block<T>(file, name, dims, Dims(dims.size(), 0), count,
-                         writer ? data : std::span<const T>(), units);
+                         writer ? data : std::span<const T>(), units, compress);
 }
 
 namespace {
@@ -369,16 +383,19 @@ std::vector<T> read_dataset(const File& file, const std::string& name, const std
                      shape_text(expected_dims) + " in '" + std::string(expected_units) + "', found " +
                      type_name(type.get()) + " " + shape_text(dims) + " in '" + units + "'");
   std::vector<T> data(element_count(dims));
-  if (H5Dread(dset.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
-    fail(file.path(), "cannot read dataset '" + name + "' (corrupt file?)");
+  if (H5Dread(dset.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0) {
+    const std::string why = hdf5_error_text();
+    throw InputError(file.path() + ": dataset '" + name + "' cannot be read: corrupt or truncated file (HDF5: " + why + ")");
+  }
   if (found_dims) *found_dims = dims;
   return data;
 }
 
 #define CLATTER_H5_INSTANTIATE(T)                                                                                 \
-  template void write_dataset<T>(File&, const std::string&, std::span<const T>, const Dims&, std::string_view);  \
+  template void write_dataset<T>(File&, const std::string&, std::span<const T>, const Dims&, std::string_view,  \
+                                  bool);                                                                         \
   template void write_dataset_block<T>(File&, const std::string&, const Dims&, const Dims&, const Dims&,         \
-                                       std::span<const T>, std::string_view);                                    \
+                                       std::span<const T>, std::string_view, bool);                              \
   template void write_attribute<T>(File&, const std::string&, const std::string&, T);                            \
   template std::vector<T> read_dataset<T>(const File&, const std::string&, const std::vector<long long>&,        \
                                           std::string_view, Dims*);                                              \
@@ -390,6 +407,8 @@ CLATTER_H5_INSTANTIATE(std::int64_t)
 CLATTER_H5_INSTANTIATE(std::uint8_t)
 CLATTER_H5_INSTANTIATE(std::uint32_t)
 CLATTER_H5_INSTANTIATE(std::uint64_t)
+CLATTER_H5_INSTANTIATE(std::int16_t)
+CLATTER_H5_INSTANTIATE(std::uint16_t)
 #undef CLATTER_H5_INSTANTIATE
 
 }  // namespace clatter::io

@@ -72,21 +72,23 @@ class File {
 template <class T>
 concept Element = std::is_same_v<T, float> || std::is_same_v<T, double> || std::is_same_v<T, std::int32_t> ||
                   std::is_same_v<T, std::int64_t> || std::is_same_v<T, std::uint8_t> ||
-                  std::is_same_v<T, std::uint32_t> || std::is_same_v<T, std::uint64_t>;
+                  std::is_same_v<T, std::uint32_t> || std::is_same_v<T, std::uint64_t> ||
+                  std::is_same_v<T, std::int16_t> || std::is_same_v<T, std::uint16_t>;
 
 using Dims = std::vector<hsize_t>;
 
 // Writes a whole dataset from this process (serial files) with a "units" attribute ("1" for
-// dimensionless). Parent groups are created as needed.
+// dimensionless). Parent groups are created as needed. `compress`: chunked, byte-shuffled,
+// deflated and Fletcher-32 checksummed, so corruption is detected on read (serial files only).
 template <Element T>
 void write_dataset(File& file, const std::string& name, std::span<const T> data, const Dims& dims,
-                   std::string_view units);
+                   std::string_view units, bool compress = false);
 
 // Collective on a parallel file: every rank writes its block [offset, offset + count) of a dataset
 // of `global_dims` in one collective MPI-IO call. A rank may own an empty block.
 template <Element T>
 void write_dataset_block(File& file, const std::string& name, const Dims& global_dims, const Dims& offset,
-                         const Dims& count, std::span<const T> data, std::string_view units);
+                         const Dims& count, std::span<const T> data, std::string_view units, bool compress = false);
 
 // Scalar attributes on `object` ("/" for the file). On a parallel file every rank must pass the same value.
 template <Element T>

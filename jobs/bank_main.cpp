@@ -11,6 +11,9 @@
 #include "jobs/field_job.hpp"
 #include "jobs/run_options.hpp"
 #include "jobs/solve_job.hpp"
+#include "jobs/pan_job.hpp"
+#include "jobs/bank_tools.hpp"
+#include "io/pan_bank.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/log.hpp"
 #include "mpi/session.hpp"
@@ -47,6 +50,32 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
   solve->add_option("-o,--out", solve_out, "output HDF5 file of raw time series")->capture_default_str();
   solve->add_option("--progress-interval", progress_interval_s, "seconds between progress lines (0: none)")
       ->capture_default_str();
+
+  jobs::ConfigOptions pan_config;
+  std::string pan_out = "bank.h5";
+  auto* pan = app.add_subcommand("pan", "build a PAN proxy bank: FDTD solves over the (B, C) proxies, wavelet fit, "
+                                        "compression (docs/bank-format.md)");
+  jobs::add_config_options(*pan, pan_config);
+  pan->add_option("-o,--out", pan_out, "output PAN bank")->capture_default_str();
+  pan->add_option("--progress-interval", progress_interval_s, "seconds between progress lines (0: none)")
+      ->capture_default_str();
+
+  std::string bank_path;
+  auto* info = app.add_subcommand("info", "describe a PAN bank: proxies, fields, epsilon, size, provenance");
+  info->add_option("bank", bank_path, "PAN bank file")->required();
+
+  jobs::ProbeRequest probe_req;
+  auto* probe = app.add_subcommand("probe", "print p_i(x, t) of one proxy from a PAN bank as t_s,p_Pa CSV");
+  probe->add_option("bank", probe_req.bank_path, "PAN bank file")->required();
+  probe->add_option("--proxy", probe_req.proxy_bc_m, "proxy semi-axes B,C [m]")->delimiter(',')->required();
+  probe->add_option("--field", probe_req.field, "rigid-body field 1-6")->required();
+  probe->add_option("--point", probe_req.point_m, "listener x,y,z [m], proxy centred on the origin")
+      ->delimiter(',')
+      ->required();
+  probe->add_option("--rate", probe_req.rate_hz, "output sample rate [Hz]: reconstruct within 2x of it (Algorithm 1); "
+                                                 "0: the bank's rate")
+      ->capture_default_str();
+  probe->add_option("--scale", probe_req.scale, "beta: the proxy scaled by beta (eq. 10)")->capture_default_str();
 
   // Every rank parses the same argv, so a usage error is the same everywhere.
   bool exit_now = false;
@@ -92,6 +121,36 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
       jobs::write_raw(solve_out, spec, result, *config, jobs::command_line(argc, argv), session.size());
       spdlog::info("solve: wrote {}", solve_out);
     }
+  }
+
+  if (pan->parsed()) {
+    auto config = config_for(jobs::pan_schema(), pan_config);
+    if (!config) return kExitOk;
+    Stage stage("pan");
+    jobs::PanSpec spec;
+    mpi::agree(world, [&] { spec = jobs::make_pan_spec(*config); });
+    spdlog::info("pan: {} proxies x {} fields, {} directions x {} radii, N = {}, epsilon = {}", spec.proxies_bc_m.size(),
+                 spec.solve.fields.size(), 45, spec.radii_m.size(), spec.terms, spec.epsilon);
+    io::PanBank bank;
+    bank.header = jobs::pan_header(spec);
+    for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) {
+      spdlog::info("pan: proxy {}/{} (B, C) = ({:.4g}, {:.4g}) m", p + 1, spec.proxies_bc_m.size(),
+                   spec.proxies_bc_m[p][0], spec.proxies_bc_m[p][1]);
+      auto result = jobs::build_proxy(world, spec, p, {}, progress_interval_s);
+      bank.proxies.push_back(std::move(result.proxy));
+    }
+    if (session.is_root()) {
+      Stage write("write");
+      io::write_pan_bank(pan_out, bank, jobs::command_line(argc, argv), config->to_toml(), session.size());
+      spdlog::info("pan: wrote {}", pan_out);
+    }
+  }
+
+  if (info->parsed() || probe->parsed()) {
+    // Serial work: every rank checks (so all agree on errors), rank 0 prints.
+    std::string text;
+    mpi::agree(world, [&] { text = info->parsed() ? jobs::bank_info(bank_path) : jobs::probe_csv(probe_req); });
+    if (session.is_root()) std::fputs(text.c_str(), stdout);
   }
 
   if (global.log_view) {

@@ -29,8 +29,13 @@ Series evaluate(const ProxyField& f, const std::array<double, 3>& x_m, double be
   }
   std::vector<double> c(n, 0.0);
   const DirectionWeights w = locate_direction(y);
-  for (int v = 0; v < 3; ++v)
-    if (w.weight[v] > 0) accumulate(f.directions.at(static_cast<std::size_t>(w.vertex[v])), f.terms, r, w.weight[v], c);
+  double delay = 0;  // the direction's alignment, interpolated like the signals
+  for (int v = 0; v < 3; ++v) {
+    if (!(w.weight[v] > 0)) continue;
+    const auto vertex = static_cast<std::size_t>(w.vertex[v]);
+    accumulate(f.directions.at(vertex), f.terms, r, w.weight[v], c);
+    if (!f.delay_steps.empty()) delay += w.weight[v] * f.delay_steps.at(vertex);
+  }
   for (double& x : c) x *= gain;
   const Wavelet wavelet(f.length);
   wavelet.inverse(c);
@@ -40,7 +45,7 @@ Series evaluate(const ProxyField& f, const std::array<double, 3>& x_m, double be
   s.dt_s = beta / rate;
   // Dropping L levels delays the reconstruction by (2^L - 1) filter delays (Wavelet).
   const double lag_s = (std::exp2(levels_dropped) - 1.0) * wavelet.scaling_delay_samples() * f.dt_s;
-  s.t0_s = beta * (f.t_first_s + r / f.c_m_s + lag_s);
+  s.t0_s = beta * (f.t_first_s + r / f.c_m_s - delay * f.dt_s + lag_s);
   s.p.resize(n);
   for (std::size_t i = 0; i < n; ++i) s.p[i] = amplitude * c[i];
   return s;

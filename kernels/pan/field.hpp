@@ -17,6 +17,7 @@ struct ProxyField {
   double t_first_s = 0;     // retarded time t - R/c of sample 0 (t = 0: centre of psi)
   double c_m_s = 343.2;
   std::vector<SparseTerms> directions;  // one per direction vertex (45)
+  std::vector<int> delay_steps;         // per vertex: its alignment advance (support_delay_steps)
 };
 
 struct Series {

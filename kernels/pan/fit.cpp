@@ -21,15 +21,25 @@ Fitter::Fitter(std::vector<double> radii_m, std::vector<int> shift_steps, int te
     for (int i = 0; i < m; ++i) pinv_[static_cast<std::size_t>(k * m + i)] = p(k, i);
 }
 
-SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon) const {
+int support_delay_steps(const std::array<double, 3>& d, double a_m, double b_m, double c_m, double c_m_s, double dt_s) {
+  const double h = std::sqrt(a_m * a_m * d[0] * d[0] + b_m * b_m * d[1] * d[1] + c_m * c_m * d[2] * d[2]);
+  return static_cast<int>(std::lround(h / (c_m_s * dt_s)));
+}
+
+SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon,
+                        int delay_steps) const {
   const std::size_t m = radii_m_.size(), n = wavelet_.length();
   if (series.size() != m) throw std::invalid_argument("PAN fit: one series per radius");
   std::vector<std::vector<double>> coef(m, std::vector<double>(n, 0.0));
   std::vector<double> peak(m, 0.0);
   for (std::size_t i = 0; i < m; ++i) {
-    // Shift by R_i / c = K_i steps; past the end of the record the signal has died away (zero).
-    const std::size_t k0 = static_cast<std::size_t>(shift_[i]);
-    for (std::size_t t = 0; t < n && k0 + t < n_samples; ++t) coef[i][t] = series[i][k0 + t];
+    // Shift by R_i / c = K_i steps (less the direction's delay); before the record starts and
+    // after it ends the field is at rest (zero).
+    const long k0 = static_cast<long>(shift_[i]) - delay_steps;
+    for (std::size_t t = 0; t < n; ++t) {
+      const long k = k0 + static_cast<long>(t);
+      if (k >= 0 && k < static_cast<long>(n_samples)) coef[i][t] = series[i][static_cast<std::size_t>(k)];
+    }
     wavelet_.forward(coef[i]);
     for (double c : coef[i]) peak[i] = std::max(peak[i], std::abs(c));
   }

@@ -1,0 +1,172 @@
+#include "io/pan_bank.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "io/h5.hpp"
+#include "io/provenance.hpp"
+
+namespace clatter::io {
+
+namespace {
+std::string field_group(std::size_t proxy, int field) {
+  return "/proxies/" + std::to_string(proxy) + "/p" + std::to_string(field);
+}
+}  // namespace
+
+void write_pan_bank(const std::string& path, const PanBank& bank, const std::string& command,
+                    const std::string& config_toml, int n_ranks) {
+  const PanBankHeader& h = bank.header;
+  if (h.length > 65536) throw std::invalid_argument("PAN bank: wavelet length over 65536 (indices are 16-bit)");
+  auto file = File::create(path);
+  write_header(file, kPanBankFormat, kPanBankFormatVersion);
+  create_group(file, "/bank");
+  write_attribute<double>(file, "/bank", "c_m_s", h.c_m_s);
+  write_attribute<double>(file, "/bank", "rho_kg_m3", h.rho_kg_m3);
+  write_attribute<double>(file, "/bank", "h_s", h.h_s);
+  write_attribute<double>(file, "/bank", "dt_s", h.dt_s);
+  write_attribute<double>(file, "/bank", "sample_rate_hz", 1.0 / h.dt_s);
+  write_attribute<double>(file, "/bank", "t_first_s", h.t_first_s);
+  write_attribute(file, "/bank", "time_origin", std::string_view("t = 0 at the centre of psi(t; h); coefficient "
+                                                                 "sample n is at retarded time t - R/c = t_first_s + n dt_s"));
+  write_attribute<double>(file, "/bank", "epsilon", h.epsilon);
+  write_attribute<double>(file, "/bank", "a_m", h.a_m);
+  write_attribute<std::int32_t>(file, "/bank", "terms", h.terms);
+  write_attribute<std::uint32_t>(file, "/bank", "length", h.length);
+  write_attribute(file, "/bank", "wavelet", std::string_view("GSL gsl_wavelet_daubechies, member 10 (5 vanishing "
+                                                             "moments), periodic, packed ordering"));
+  write_dataset<double>(file, "/bank/radii_m", h.radii_m, {h.radii_m.size()}, "m");
+  std::vector<double> dirs;
+  for (const auto& d : h.directions) dirs.insert(dirs.end(), d.begin(), d.end());
+  write_dataset<double>(file, "/bank/directions", dirs, {h.directions.size(), 3}, "1");
+  std::vector<std::int32_t> tris;
+  for (const auto& t : h.triangles) tris.insert(tris.end(), t.begin(), t.end());
+  write_dataset<std::int32_t>(file, "/bank/triangles", tris, {h.triangles.size(), 3}, "1");
+  std::vector<double> b, c;
+  for (const auto& p : bank.proxies) {
+    b.push_back(p.b_m);
+    c.push_back(p.c_m);
+  }
+  write_dataset<double>(file, "/proxies/b_m", b, {b.size()}, "m");
+  write_dataset<double>(file, "/proxies/c_m", c, {c.size()}, "m");
+
+  const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms);
+  for (std::size_t p = 0; p < bank.proxies.size(); ++p) {
+    write_dataset<std::int32_t>(file, "/proxies/" + std::to_string(p) + "/delay_steps", bank.proxies[p].delay_steps,
+                                {bank.proxies[p].delay_steps.size()}, "1");
+    for (int field = 1; field <= 6; ++field) {
+      const auto& dirs_terms = bank.proxies[p].fields[static_cast<std::size_t>(field - 1)];
+      const std::string g = field_group(p, field);
+      create_group(file, g);
+      // A field not solved for this proxy (solve.fields) is an empty group marked solved = 0.
+      write_attribute<std::int32_t>(file, g, "solved", dirs_terms.empty() ? 0 : 1);
+      if (dirs_terms.empty()) continue;
+      std::vector<std::uint32_t> offsets{0};
+      std::vector<std::uint16_t> delta;
+      std::vector<std::int16_t> quantized;
+      std::vector<float> scale(n_dirs * n_terms, 0.0f);
+      for (std::size_t d = 0; d < n_dirs; ++d) {
+        const PanTerms& t = dirs_terms.at(d);
+        for (std::size_t e = 0; e < t.index.size(); ++e)
+          delta.push_back(static_cast<std::uint16_t>(e == 0 ? t.index[e] : t.index[e] - t.index[e - 1]));
+        offsets.push_back(static_cast<std::uint32_t>(delta.size()));
+        for (std::size_t k = 0; k < n_terms; ++k) {
+          float m = 0;
+          for (std::size_t e = 0; e < t.index.size(); ++e) m = std::max(m, std::abs(t.value[e * n_terms + k]));
+          scale[d * n_terms + k] = m / 32767.0f;
+        }
+        for (std::size_t e = 0; e < t.index.size(); ++e)
+          for (std::size_t k = 0; k < n_terms; ++k) {
+            const float s = scale[d * n_terms + k];
+            quantized.push_back(static_cast<std::int16_t>(s > 0 ? std::lround(t.value[e * n_terms + k] / s) : 0));
+          }
+      }
+      write_dataset<std::uint32_t>(file, g + "/offsets", offsets, {offsets.size()}, "1", true);
+      write_dataset<std::uint16_t>(file, g + "/index_delta", delta, {delta.size()}, "1", true);
+      write_dataset<std::int16_t>(file, g + "/values", quantized, {delta.size(), n_terms}, "1", true);
+      const char* units = field <= 3 ? "Pa m^k/(m/s^2)" : "Pa m^k/(rad/s^2)";
+      write_dataset<float>(file, g + "/scale", scale, {n_dirs, n_terms}, units, true);
+    }
+  }
+  write_provenance(file, command, config_toml, n_ranks);
+  file.commit();
+}
+
+PanBank read_pan_bank(const std::string& path) {
+  auto file = File::open(path);
+  check_header(file, kPanBankFormat, kPanBankFormatVersion);
+  PanBank bank;
+  PanBankHeader& h = bank.header;
+  h.c_m_s = read_attribute<double>(file, "/bank", "c_m_s");
+  h.rho_kg_m3 = read_attribute<double>(file, "/bank", "rho_kg_m3");
+  h.h_s = read_attribute<double>(file, "/bank", "h_s");
+  h.dt_s = read_attribute<double>(file, "/bank", "dt_s");
+  h.t_first_s = read_attribute<double>(file, "/bank", "t_first_s");
+  h.epsilon = read_attribute<double>(file, "/bank", "epsilon");
+  h.a_m = read_attribute<double>(file, "/bank", "a_m");
+  h.terms = read_attribute<std::int32_t>(file, "/bank", "terms");
+  h.length = read_attribute<std::uint32_t>(file, "/bank", "length");
+  if (h.terms < 1 || h.length < 2 || (h.length & (h.length - 1)) != 0 || !(h.dt_s > 0))
+    throw InputError(path + ": /bank attributes terms, length or dt_s out of range");
+  h.radii_m = read_dataset<double>(file, "/bank/radii_m", {-1}, "m");
+  auto dirs = read_dataset<double>(file, "/bank/directions", {-1, 3}, "1");
+  for (std::size_t i = 0; i + 2 < dirs.size(); i += 3) h.directions.push_back({dirs[i], dirs[i + 1], dirs[i + 2]});
+  auto tris = read_dataset<std::int32_t>(file, "/bank/triangles", {-1, 3}, "1");
+  for (std::size_t i = 0; i + 2 < tris.size(); i += 3) h.triangles.push_back({tris[i], tris[i + 1], tris[i + 2]});
+  Dims nb;
+  auto b = read_dataset<double>(file, "/proxies/b_m", {-1}, "m", &nb);
+  auto c = read_dataset<double>(file, "/proxies/c_m", {static_cast<long long>(nb[0])}, "m");
+  const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms);
+  for (std::size_t p = 0; p < b.size(); ++p) {
+    PanProxy proxy;
+    proxy.b_m = b[p];
+    proxy.c_m = c[p];
+    proxy.delay_steps = read_dataset<std::int32_t>(file, "/proxies/" + std::to_string(p) + "/delay_steps",
+                                                   {static_cast<long long>(n_dirs)}, "1");
+    for (int field = 1; field <= 6; ++field) {
+      const std::string g = field_group(p, field);
+      if (read_attribute<std::int32_t>(file, g, "solved") == 0) continue;
+      auto offsets = read_dataset<std::uint32_t>(file, g + "/offsets", {static_cast<long long>(n_dirs + 1)}, "1");
+      Dims nd;
+      auto delta = read_dataset<std::uint16_t>(file, g + "/index_delta", {-1}, "1", &nd);
+      auto values = read_dataset<std::int16_t>(file, g + "/values",
+                                               {static_cast<long long>(nd[0]), static_cast<long long>(n_terms)}, "1");
+      const char* units = field <= 3 ? "Pa m^k/(m/s^2)" : "Pa m^k/(rad/s^2)";
+      auto scale = read_dataset<float>(file, g + "/scale",
+                                       {static_cast<long long>(n_dirs), static_cast<long long>(n_terms)}, units);
+      auto& out = proxy.fields[static_cast<std::size_t>(field - 1)];
+      out.resize(n_dirs);
+      for (std::size_t d = 0; d < n_dirs; ++d) {
+        if (offsets[d] > offsets[d + 1] || offsets[d + 1] > delta.size())
+          throw InputError(path + ": '" + g + "/offsets' is not a valid partition of " + std::to_string(delta.size()) +
+                           " coefficients");
+        std::uint32_t j = 0;
+        for (std::uint32_t e = offsets[d]; e < offsets[d + 1]; ++e) {
+          j = e == offsets[d] ? delta[e] : j + delta[e];
+          if (j >= h.length || (e > offsets[d] && delta[e] == 0))
+            throw InputError(path + ": '" + g + "/index_delta' gives coefficient index " + std::to_string(j) +
+                             " outside [0, " + std::to_string(h.length) + ") or repeated");
+          out[d].index.push_back(j);
+          for (std::size_t k = 0; k < n_terms; ++k)
+            out[d].value.push_back(static_cast<float>(values[e * n_terms + k]) * scale[d * n_terms + k]);
+        }
+      }
+    }
+    bank.proxies.push_back(std::move(proxy));
+  }
+  return bank;
+}
+
+std::size_t pan_coefficient_bytes(const PanBank& bank) {
+  std::size_t bytes = 0;
+  const std::size_t n_terms = static_cast<std::size_t>(bank.header.terms);
+  for (const auto& p : bank.proxies)
+    for (const auto& f : p.fields) {
+      bytes += (f.size() + 1) * 4 + f.size() * n_terms * 4;  // offsets, scales
+      for (const auto& d : f) bytes += d.index.size() * (2 + 2 * n_terms);
+    }
+  return bytes;
+}
+
+}  // namespace clatter::io

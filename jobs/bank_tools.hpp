@@ -1,0 +1,24 @@
+#pragma once
+// `clatter-bank info` and `clatter-bank probe`: reading a PAN bank back (serial, rank 0 prints).
+#include <array>
+#include <string>
+
+namespace clatter::jobs {
+
+// A summary of the bank: proxies, fields, epsilon, sizes, provenance. Throws InputError.
+std::string bank_info(const std::string& path);
+
+struct ProbeRequest {
+  std::string bank_path;
+  std::array<double, 2> proxy_bc_m{};
+  int field = 1;
+  std::array<double, 3> point_m{};
+  double rate_hz = 0;  // 0: the bank's own rate
+  double scale = 1.0;  // beta of eq. (10)
+};
+
+// "t_s,p_Pa" CSV lines of p_i^(beta h)(x, t). Throws InputError for a proxy or field not in the
+// bank or a point inside the (scaled) proxy's bounding sphere.
+std::string probe_csv(const ProbeRequest& request);
+
+}  // namespace clatter::jobs

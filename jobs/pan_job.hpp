@@ -1,0 +1,51 @@
+#pragma once
+// `clatter-bank pan`: the PAN proxy bank (Chadwick et al. 2012, sections 4-5). For each proxy
+// ellipsoid (A, B, C): octant FDTD solves of the 6 rigid-body fields recorded at 45 directions x M
+// radii, the wavelet fit of each direction, and the compressed bank file (io/pan_bank.hpp).
+#include <mpi.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "io/config.hpp"
+#include "io/pan_bank.hpp"
+#include "jobs/solve_job.hpp"
+#include "kernels/pan/field.hpp"
+
+namespace clatter::jobs {
+
+const io::Schema& pan_schema();
+
+struct PanSpec {
+  SolveSpec solve;                     // one proxy's solve; body and listeners set per proxy
+  std::vector<std::array<double, 2>> proxies_bc_m;  // (B, C)
+  double a_m = 0.5;
+  std::vector<double> radii_m;         // whole numbers of steps: shift[i] * c * dt
+  std::vector<int> shift_steps;
+  // The retarded frame starts A/c before the pulse: no listener outside the bounding sphere hears
+  // anything before t - R/c = -2h - A/c. Each series is shifted by shift_steps[i] - lead_steps.
+  int lead_steps = 0;
+  int terms = 2;
+  double epsilon = 0.01;
+  std::uint32_t length = 0;            // wavelet length T
+};
+
+// Throws InputError for any invalid combination.
+PanSpec make_pan_spec(const io::Config& config);
+
+// Solves one proxy (all ranks) and fits it (rank 0). `extra_listeners_m` are recorded too and
+// returned raw per field (validation); on other ranks the result is empty.
+struct ProxyResult {
+  io::PanProxy proxy;
+  std::vector<std::vector<float>> extra_series;  // per field: [extra listener][sample]
+};
+ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
+                        const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s);
+
+io::PanBankHeader pan_header(const PanSpec& spec);
+
+// A fitted field as the evaluation library wants it.
+kernels::pan::ProxyField proxy_field(const io::PanBankHeader& header, const io::PanProxy& proxy, int field);
+
+}  // namespace clatter::jobs
