@@ -12,6 +12,7 @@
 #include "jobs/run_options.hpp"
 #include "jobs/solve_job.hpp"
 #include "jobs/pan_job.hpp"
+#include "kernels/pan/directions.hpp"
 #include "jobs/bank_tools.hpp"
 #include "io/pan_bank.hpp"
 #include "mpi/comm.hpp"
@@ -130,7 +131,8 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
     jobs::PanSpec spec;
     mpi::agree(world, [&] { spec = jobs::make_pan_spec(*config); });
     spdlog::info("pan: {} proxies x {} fields, {} directions x {} radii, N = {}, epsilon = {}", spec.proxies_bc_m.size(),
-                 spec.solve.fields.size(), 45, spec.radii_m.size(), spec.terms, spec.epsilon);
+                 spec.solve.fields.size(), kernels::pan::vertex_count(spec.divisions), spec.radii_m.size(), spec.terms,
+                 spec.epsilon);
     io::PanBank bank;
     bank.header = jobs::pan_header(spec);
     for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) {

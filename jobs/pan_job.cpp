@@ -37,6 +37,8 @@ const io::Schema& pan_schema() {
         {"fit.radii_m", io::RealList{0.6, 0.75, 0.95, 1.2, 1.5},
          "the M listening radii [m], outside the bounding sphere; rounded to whole steps of c dt", {0.0, 1e4, true}},
         {"fit.terms", std::int64_t{2}, "N, terms of the 1/R^k series (8)", {1, 8}},
+        {"fit.divisions", std::int64_t{8}, "octant edges cut in d: (d+1)(d+2)/2 directions, d^2 triangles; 8: the "
+                                           "paper's 45 and 64", {1, 64}},
         {"fit.epsilon", 0.01, "keep wavelet coefficient j iff some |p^_i^j| >= epsilon ||p^_i||_inf", {0.0, 1.0}},
         {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
     });
@@ -65,6 +67,7 @@ PanSpec make_pan_spec(const io::Config& config) {
                                    c, spec.a_m));
   }
   spec.terms = static_cast<int>(config.integer("fit.terms"));
+  spec.divisions = static_cast<int>(config.integer("fit.divisions"));
   spec.epsilon = config.real("fit.epsilon");
   const double c_m_s = config.real("medium.c_m_s"), dt = config.real("time.dt_s"), dx = config.real("grid.dx_m");
   for (double r : config.reals("fit.radii_m")) {
@@ -101,7 +104,7 @@ PanSpec make_pan_spec(const io::Config& config) {
   for (double f : config.reals("solve.fields")) fields += fmt::format("{}{}", fields.size() > 1 ? ", " : "", f);
   solve.set("solve.fields=" + fields + "]");
   std::string points = "[";
-  for (const auto& d : pan::direction_vertices())
+  for (const auto& d : pan::direction_vertices(spec.divisions))
     for (double r : spec.radii_m)
       points += fmt::format("{}[{:.17g}, {:.17g}, {:.17g}]", points.size() > 1 ? ", " : "", r * d[0], r * d[1], r * d[2]);
   solve.set("listeners.points_m=" + points + "]");
@@ -125,8 +128,8 @@ io::PanBankHeader pan_header(const PanSpec& spec) {
   h.terms = spec.terms;
   h.length = spec.length;
   h.radii_m = spec.radii_m;
-  h.directions = pan::direction_vertices();
-  for (const auto& t : pan::direction_triangles()) h.triangles.push_back({t[0], t[1], t[2]});
+  h.directions = pan::direction_vertices(spec.divisions);
+  for (const auto& t : pan::direction_triangles(spec.divisions)) h.triangles.push_back({t[0], t[1], t[2]});
   return h;
 }
 
@@ -148,17 +151,18 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   Stage stage("fit");
   out.proxy.b_m = spec.proxies_bc_m[proxy][0];
   out.proxy.c_m = spec.proxies_bc_m[proxy][1];
-  for (const auto& d : pan::direction_vertices())
+  const auto directions = pan::direction_vertices(spec.divisions);
+  for (const auto& d : directions)
     out.proxy.delay_steps.push_back(pan::support_delay_steps(d, spec.a_m, out.proxy.b_m, out.proxy.c_m,
                                                               s.problem.c_m_s, s.problem.dt_s));
   std::vector<int> shifts;
   for (int k : spec.shift_steps) shifts.push_back(k - spec.lead_steps);
   const pan::Fitter fitter(spec.radii_m, shifts, spec.terms, spec.length);
   const std::size_t ns = static_cast<std::size_t>(s.n_samples), m = spec.radii_m.size();
-  const std::size_t n_fitted = pan::direction_vertices().size() * m;
+  const std::size_t n_fitted = directions.size() * m;
   for (std::size_t f = 0; f < s.fields.size(); ++f) {
     auto& dirs = out.proxy.fields[static_cast<std::size_t>(s.fields[f] - 1)];
-    for (std::size_t d = 0; d < pan::direction_vertices().size(); ++d) {
+    for (std::size_t d = 0; d < directions.size(); ++d) {
       std::vector<const float*> series;
       for (std::size_t i = 0; i < m; ++i) series.push_back(raw.series[f].data() + (d * m + i) * ns);
       auto terms = fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d]);

@@ -27,6 +27,7 @@ struct PanSpec {
   // anything before t - R/c = -2h - A/c. Each series is shifted by shift_steps[i] - lead_steps.
   int lead_steps = 0;
   int terms = 2;
+  int divisions = 8;                   // octant triangulation: 8 -> 45 directions (the paper's)
   double epsilon = 0.01;
   std::uint32_t length = 0;            // wavelet length T
 };

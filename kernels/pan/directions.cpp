@@ -6,40 +6,43 @@
 
 namespace clatter::kernels::pan {
 namespace {
-int vertex_index(int a, int b) {
-  // Row a holds b = 0 .. 8 - a; rows before a hold sum_{r < a} (9 - r) vertices.
-  return a * (kDivisions + 1) - a * (a - 1) / 2 + b;
+int vertex_index(int divisions, int a, int b) {
+  // Row a holds b = 0 .. d - a; rows before a hold sum_{r < a} (d + 1 - r) vertices.
+  return a * (divisions + 1) - a * (a - 1) / 2 + b;
 }
 }  // namespace
 
-const std::vector<std::array<double, 3>>& direction_vertices() {
-  static const std::vector<std::array<double, 3>> v = [] {
-    std::vector<std::array<double, 3>> out;
-    for (int a = 0; a <= kDivisions; ++a)
-      for (int b = 0; a + b <= kDivisions; ++b) {
-        const double x = a, y = b, z = kDivisions - a - b, n = std::sqrt(x * x + y * y + z * z);
-        out.push_back({x / n, y / n, z / n});
-      }
-    return out;
-  }();
-  return v;
+int divisions_of(std::size_t n_vertices) {
+  for (int d = 1; vertex_count(d) <= static_cast<int>(n_vertices); ++d)
+    if (static_cast<std::size_t>(vertex_count(d)) == n_vertices) return d;
+  return 0;
 }
 
-const std::vector<std::array<int, 3>>& direction_triangles() {
-  static const std::vector<std::array<int, 3>> t = [] {
-    std::vector<std::array<int, 3>> out;
-    for (int a = 0; a < kDivisions; ++a)
-      for (int b = 0; a + b < kDivisions; ++b) {
-        out.push_back({vertex_index(a, b), vertex_index(a + 1, b), vertex_index(a, b + 1)});
-        if (a + b + 1 < kDivisions)
-          out.push_back({vertex_index(a + 1, b), vertex_index(a, b + 1), vertex_index(a + 1, b + 1)});
-      }
-    return out;
-  }();
-  return t;
+std::vector<std::array<double, 3>> direction_vertices(int divisions) {
+  std::vector<std::array<double, 3>> out;
+  for (int a = 0; a <= divisions; ++a)
+    for (int b = 0; a + b <= divisions; ++b) {
+      const double x = a, y = b, z = divisions - a - b, n = std::sqrt(x * x + y * y + z * z);
+      out.push_back({x / n, y / n, z / n});
+    }
+  return out;
 }
 
-DirectionWeights locate_direction(const std::array<double, 3>& d) {
+std::vector<std::array<int, 3>> direction_triangles(int divisions) {
+  std::vector<std::array<int, 3>> out;
+  for (int a = 0; a < divisions; ++a)
+    for (int b = 0; a + b < divisions; ++b) {
+      out.push_back({vertex_index(divisions, a, b), vertex_index(divisions, a + 1, b), vertex_index(divisions, a, b + 1)});
+      if (a + b + 1 < divisions)
+        out.push_back({vertex_index(divisions, a + 1, b), vertex_index(divisions, a, b + 1),
+                       vertex_index(divisions, a + 1, b + 1)});
+    }
+  return out;
+}
+
+DirectionWeights locate_direction(const std::array<double, 3>& d, int divisions) {
+  const int kDivisions = divisions;
+  auto vertex_index = [&](int a, int b) { return ::clatter::kernels::pan::vertex_index(divisions, a, b); };
   const double s = d[0] + d[1] + d[2];
   if (!(s > 0) || d[0] < 0 || d[1] < 0 || d[2] < 0)
     throw std::invalid_argument("locate_direction: direction outside the positive octant");

@@ -1,21 +1,23 @@
 #pragma once
 // Listening directions of a PAN proxy (Chadwick et al. 2012, section 5): the positive octant of
 // the unit sphere, triangulated by cutting each edge of the spherical triangle (x, y, z axes) into
-// 8: 45 vertices, 64 triangles. A direction is located by its gnomonic projection onto the plane
-// x + y + z = 1 and interpolated linearly (barycentric) over its triangle.
+// d parts: (d+1)(d+2)/2 vertices, d^2 triangles; the paper's d = 8 gives 45 and 64. A direction
+// is located by its gnomonic projection onto the plane x + y + z = 1 and interpolated linearly
+// (barycentric) over its triangle.
 #include <array>
 #include <vector>
 
 namespace clatter::kernels::pan {
 
-inline constexpr int kDivisions = 8;
-inline constexpr int kVertices = (kDivisions + 1) * (kDivisions + 2) / 2;  // 45
-inline constexpr int kTriangles = kDivisions * kDivisions;                   // 64
+inline constexpr int kPaperDivisions = 8;
+inline constexpr int vertex_count(int divisions) { return (divisions + 1) * (divisions + 2) / 2; }
+// Inverse of vertex_count; 0 if n is not a vertex count.
+int divisions_of(std::size_t n_vertices);
 
-// Unit vectors of the 45 vertices, index order (a, b) row-major with c = 8 - a - b.
-const std::vector<std::array<double, 3>>& direction_vertices();
-// The 64 triangles as vertex indices.
-const std::vector<std::array<int, 3>>& direction_triangles();
+// Unit vectors of the vertices, index order (a, b) row-major with c = d - a - b.
+std::vector<std::array<double, 3>> direction_vertices(int divisions = kPaperDivisions);
+// The triangles as vertex indices.
+std::vector<std::array<int, 3>> direction_triangles(int divisions = kPaperDivisions);
 
 struct DirectionWeights {
   std::array<int, 3> vertex{};
@@ -23,6 +25,6 @@ struct DirectionWeights {
 };
 
 // For a direction in the closed positive octant (components >= 0, not all 0).
-DirectionWeights locate_direction(const std::array<double, 3>& d);
+DirectionWeights locate_direction(const std::array<double, 3>& d, int divisions = kPaperDivisions);
 
 }  // namespace clatter::kernels::pan

@@ -28,7 +28,9 @@ Series evaluate(const ProxyField& f, const std::array<double, 3>& x_m, double be
     gain /= std::sqrt(2.0);
   }
   std::vector<double> c(n, 0.0);
-  const DirectionWeights w = locate_direction(y);
+  const int divisions = divisions_of(f.directions.size());
+  if (divisions == 0) throw std::invalid_argument("PAN evaluate: direction count is not an octant triangulation");
+  const DirectionWeights w = locate_direction(y, divisions);
   double delay = 0;  // the direction's alignment, interpolated like the signals
   for (int v = 0; v < 3; ++v) {
     if (!(w.weight[v] > 0)) continue;

@@ -30,24 +30,31 @@ io::PanProxy through_file(const jobs::PanSpec& spec, const io::PanProxy& proxy, 
 
 }  // namespace
 
-TEST(PanBank, HeldOutRadiusAndDirectionWithin5PercentAtEpsilon001) {
+namespace {
+
+// Relative L2 of the bank (through the file) against the raw FDTD signal at a held-out radius and
+// a direction strictly inside a triangle, for every field, at epsilon = 0.01.
+std::vector<double> held_out_errors(int divisions) {
   io::Config config(jobs::pan_schema());
   config.set("proxies.list_m=[[0.35, 0.2]]");
+  config.set("fit.divisions=" + std::to_string(divisions));
   const auto spec = jobs::make_pan_spec(config);
   const double step = spec.solve.problem.c_m_s * spec.solve.problem.dt_s;
   const double r = std::round(0.85 / step) * step;  // between fitted radii 0.74 and 0.94; whole steps
-  const std::array<double, 3> d{0.37, 0.52, 0.77};  // strictly inside a triangle
+  const std::array<double, 3> d{0.37, 0.52, 0.77};
   const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   const std::array<double, 3> x{r * d[0] / n, r * d[1] / n, r * d[2] / n};
   auto result = jobs::build_proxy(MPI_COMM_WORLD, spec, 0, {x}, 0.0);
-  if (!root()) return;
+  std::vector<double> errors;
+  if (!root()) return errors;
   const auto proxy = through_file(spec, result.proxy, "pan_heldout.h5");
   const auto header = jobs::pan_header(spec);
   const std::size_t ns = static_cast<std::size_t>(spec.solve.n_samples);
   for (std::size_t f = 0; f < spec.solve.fields.size(); ++f) {
     const int field = spec.solve.fields[f];
     const auto s = kernels::pan::evaluate(jobs::proxy_field(header, proxy, field), x);
-    // PAN sample k is at t0 + k dt, t0 = t_first + r/c: a whole number of steps from raw sample 0.
+    // PAN sample k is at t0 + k dt; t0 is a whole number of steps from raw sample 0 up to the
+    // interpolated direction delay, rounded here (both series are smooth at this rate).
     const long offset = std::lround((s.t0_s + spec.solve.i_time_zero * spec.solve.problem.dt_s) / spec.solve.problem.dt_s);
     double num = 0, den = 0;
     for (std::size_t k = 0; k < ns; ++k) {
@@ -57,13 +64,27 @@ TEST(PanBank, HeldOutRadiusAndDirectionWithin5PercentAtEpsilon001) {
       num += (pan - raw) * (pan - raw);
       den += raw * raw;
     }
-    const double err = std::sqrt(num / den);
-    std::printf("field %d: held-out r = %.3f m, direction between vertices: relative L2 %.4f\n", field, r, err);
-    // Issue 4 asks <= 5 %. Translations meet it (2.2-3.8 %). Rotations reach 6-9 % at the default 45
-    // directions: their patterns vary faster across the ~11 degree triangles than linear
-    // interpolation follows. Open in issue 4; guarded here so it cannot get worse unnoticed.
-    EXPECT_LT(err, field <= 3 ? 0.05 : 0.10) << "field " << field;
+    errors.push_back(std::sqrt(num / den));
+    std::printf("%d divisions, field %d: held-out r = %.3f m, direction between vertices: relative L2 %.4f\n",
+                divisions, field, r, errors.back());
   }
+  return errors;
+}
+
+}  // namespace
+
+TEST(PanBank, HeldOutRadiusAndDirectionWithin5PercentAtEpsilon001) {
+  // 153 directions (fit.divisions = 16): every field within 5 %.
+  const auto errors = held_out_errors(16);
+  for (std::size_t f = 0; f < errors.size(); ++f) EXPECT_LT(errors[f], 0.05) << "field " << f + 1;
+}
+
+TEST(PanBank, PaperDirectionLayoutHeldOut) {
+  // The paper's 45 directions: translations within 5 %. Rotations reach 6-9 % between vertices for
+  // this elongated proxy (their patterns vary faster than linear interpolation over ~11 degree
+  // triangles follows); guarded so that it cannot get worse unnoticed. docs/pan.md.
+  const auto errors = held_out_errors(8);
+  for (std::size_t f = 0; f < errors.size(); ++f) EXPECT_LT(errors[f], f < 3 ? 0.05 : 0.10) << "field " << f + 1;
 }
 
 TEST(PanBank, SphereProxyReproducesTheExactTranslatingSphere) {

@@ -73,6 +73,15 @@ double relative_l2(const Series& s, const std::array<double, 3>& x, double sign 
 }
 }  // namespace
 
+TEST(PanDirections, FinerTriangulations) {
+  for (int d : {1, 2, 8, 16}) {
+    EXPECT_EQ(direction_vertices(d).size(), static_cast<std::size_t>(vertex_count(d)));
+    EXPECT_EQ(direction_triangles(d).size(), static_cast<std::size_t>(d * d));
+    EXPECT_EQ(divisions_of(direction_vertices(d).size()), d);
+  }
+  EXPECT_EQ(divisions_of(46), 0);
+}
+
 TEST(PanDirections, OctantTriangulation) {
   ASSERT_EQ(direction_vertices().size(), 45u);
   ASSERT_EQ(direction_triangles().size(), 64u);
