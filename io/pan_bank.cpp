@@ -9,12 +9,6 @@
 
 namespace clatter::io {
 
-namespace {
-std::string field_group(std::size_t proxy, int field) {
-  return "/proxies/" + std::to_string(proxy) + "/p" + std::to_string(field);
-}
-}  // namespace
-
 void write_pan_bank(const std::string& path, const PanBank& bank, const std::string& command,
                     const std::string& config_toml, int n_ranks) {
   const PanBankHeader& h = bank.header;
@@ -51,44 +45,49 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
   write_dataset<double>(file, "/proxies/b_m", b, {b.size()}, "m");
   write_dataset<double>(file, "/proxies/c_m", c, {c.size()}, "m");
 
+  // All coefficients in one compressed CSR: rows are (proxy, field, direction) in that order, so
+  // a bank is a handful of datasets however many proxies it holds (HDF5 objects cost ~1-2 KB each).
   const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms);
-  for (std::size_t p = 0; p < bank.proxies.size(); ++p) {
-    write_dataset<std::int32_t>(file, "/proxies/" + std::to_string(p) + "/delay_steps", bank.proxies[p].delay_steps,
-                                {bank.proxies[p].delay_steps.size()}, "1");
-    for (int field = 1; field <= 6; ++field) {
-      const auto& dirs_terms = bank.proxies[p].fields[static_cast<std::size_t>(field - 1)];
-      const std::string g = field_group(p, field);
-      create_group(file, g);
-      // A field not solved for this proxy (solve.fields) is an empty group marked solved = 0.
-      write_attribute<std::int32_t>(file, g, "solved", dirs_terms.empty() ? 0 : 1);
-      if (dirs_terms.empty()) continue;
-      std::vector<std::uint32_t> offsets{0};
-      std::vector<std::uint16_t> delta;
-      std::vector<std::int16_t> quantized;
-      std::vector<float> scale(n_dirs * n_terms, 0.0f);
+  const std::size_t n_proxies = bank.proxies.size();
+  std::vector<std::uint8_t> solved;
+  std::vector<std::int32_t> delays;
+  std::vector<std::uint32_t> offsets{0};
+  std::vector<std::uint16_t> delta;
+  std::vector<std::int16_t> quantized;
+  std::vector<float> scale;
+  for (const auto& proxy : bank.proxies) {
+    if (proxy.delay_steps.size() != n_dirs) throw std::invalid_argument("PAN bank: one delay per direction");
+    delays.insert(delays.end(), proxy.delay_steps.begin(), proxy.delay_steps.end());
+    for (const auto& dirs_terms : proxy.fields) {
+      solved.push_back(dirs_terms.empty() ? 0 : 1);  // a field not in solve.fields
       for (std::size_t d = 0; d < n_dirs; ++d) {
-        const PanTerms& t = dirs_terms.at(d);
+        static const PanTerms none;
+        const PanTerms& t = dirs_terms.empty() ? none : dirs_terms.at(d);
         for (std::size_t e = 0; e < t.index.size(); ++e)
           delta.push_back(static_cast<std::uint16_t>(e == 0 ? t.index[e] : t.index[e] - t.index[e - 1]));
         offsets.push_back(static_cast<std::uint32_t>(delta.size()));
         for (std::size_t k = 0; k < n_terms; ++k) {
           float m = 0;
           for (std::size_t e = 0; e < t.index.size(); ++e) m = std::max(m, std::abs(t.value[e * n_terms + k]));
-          scale[d * n_terms + k] = m / 32767.0f;
+          // Quantization step matched to the fit: coefficients under epsilon * max were dropped, so
+          // a step of epsilon * max / 16 (error <= epsilon * max / 32) adds little, and small
+          // integers deflate well. The 16-bit range bounds the step from below.
+          scale.push_back(std::max(m / 32767.0f, static_cast<float>(h.epsilon) * m / 16.0f));
         }
+        const float* sc = &scale[scale.size() - n_terms];
         for (std::size_t e = 0; e < t.index.size(); ++e)
-          for (std::size_t k = 0; k < n_terms; ++k) {
-            const float s = scale[d * n_terms + k];
-            quantized.push_back(static_cast<std::int16_t>(s > 0 ? std::lround(t.value[e * n_terms + k] / s) : 0));
-          }
+          for (std::size_t k = 0; k < n_terms; ++k)
+            quantized.push_back(static_cast<std::int16_t>(sc[k] > 0 ? std::lround(t.value[e * n_terms + k] / sc[k]) : 0));
       }
-      write_dataset<std::uint32_t>(file, g + "/offsets", offsets, {offsets.size()}, "1", true);
-      write_dataset<std::uint16_t>(file, g + "/index_delta", delta, {delta.size()}, "1", true);
-      write_dataset<std::int16_t>(file, g + "/values", quantized, {delta.size(), n_terms}, "1", true);
-      const char* units = field <= 3 ? "Pa m^k/(m/s^2)" : "Pa m^k/(rad/s^2)";
-      write_dataset<float>(file, g + "/scale", scale, {n_dirs, n_terms}, units, true);
     }
   }
+  write_dataset<std::int32_t>(file, "/proxies/delay_steps", delays, {n_proxies, n_dirs}, "1", true);
+  write_dataset<std::uint8_t>(file, "/coefficients/solved", solved, {n_proxies, 6}, "1", true);
+  write_dataset<std::uint32_t>(file, "/coefficients/offsets", offsets, {offsets.size()}, "1", true);
+  write_dataset<std::uint16_t>(file, "/coefficients/index_delta", delta, {delta.size()}, "1", true);
+  write_dataset<std::int16_t>(file, "/coefficients/values", quantized, {delta.size(), n_terms}, "1", true);
+  write_dataset<float>(file, "/coefficients/scale", scale, {n_proxies, 6, n_dirs, n_terms}, "Pa m^k per unit acceleration",
+                       true);
   write_provenance(file, command, config_toml, n_ranks);
   file.commit();
 }
@@ -117,39 +116,40 @@ PanBank read_pan_bank(const std::string& path) {
   Dims nb;
   auto b = read_dataset<double>(file, "/proxies/b_m", {-1}, "m", &nb);
   auto c = read_dataset<double>(file, "/proxies/c_m", {static_cast<long long>(nb[0])}, "m");
-  const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms);
-  for (std::size_t p = 0; p < b.size(); ++p) {
+  const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms), np = b.size();
+  const auto nd = static_cast<long long>(n_dirs), nt = static_cast<long long>(n_terms), npl = static_cast<long long>(np);
+  auto delays = read_dataset<std::int32_t>(file, "/proxies/delay_steps", {npl, nd}, "1");
+  auto solved = read_dataset<std::uint8_t>(file, "/coefficients/solved", {npl, 6}, "1");
+  auto offsets = read_dataset<std::uint32_t>(file, "/coefficients/offsets", {npl * 6 * nd + 1}, "1");
+  Dims nnz;
+  auto delta = read_dataset<std::uint16_t>(file, "/coefficients/index_delta", {-1}, "1", &nnz);
+  auto values = read_dataset<std::int16_t>(file, "/coefficients/values", {static_cast<long long>(nnz[0]), nt}, "1");
+  auto scale = read_dataset<float>(file, "/coefficients/scale", {npl, 6, nd, nt}, "Pa m^k per unit acceleration");
+  for (std::size_t p = 0; p < np; ++p) {
     PanProxy proxy;
     proxy.b_m = b[p];
     proxy.c_m = c[p];
-    proxy.delay_steps = read_dataset<std::int32_t>(file, "/proxies/" + std::to_string(p) + "/delay_steps",
-                                                   {static_cast<long long>(n_dirs)}, "1");
+    proxy.delay_steps.assign(delays.begin() + static_cast<std::ptrdiff_t>(p * n_dirs),
+                             delays.begin() + static_cast<std::ptrdiff_t>((p + 1) * n_dirs));
     for (int field = 1; field <= 6; ++field) {
-      const std::string g = field_group(p, field);
-      if (read_attribute<std::int32_t>(file, g, "solved") == 0) continue;
-      auto offsets = read_dataset<std::uint32_t>(file, g + "/offsets", {static_cast<long long>(n_dirs + 1)}, "1");
-      Dims nd;
-      auto delta = read_dataset<std::uint16_t>(file, g + "/index_delta", {-1}, "1", &nd);
-      auto values = read_dataset<std::int16_t>(file, g + "/values",
-                                               {static_cast<long long>(nd[0]), static_cast<long long>(n_terms)}, "1");
-      const char* units = field <= 3 ? "Pa m^k/(m/s^2)" : "Pa m^k/(rad/s^2)";
-      auto scale = read_dataset<float>(file, g + "/scale",
-                                       {static_cast<long long>(n_dirs), static_cast<long long>(n_terms)}, units);
+      const std::size_t pf = p * 6 + static_cast<std::size_t>(field - 1);
+      if (solved[pf] == 0) continue;
       auto& out = proxy.fields[static_cast<std::size_t>(field - 1)];
       out.resize(n_dirs);
       for (std::size_t d = 0; d < n_dirs; ++d) {
-        if (offsets[d] > offsets[d + 1] || offsets[d + 1] > delta.size())
-          throw InputError(path + ": '" + g + "/offsets' is not a valid partition of " + std::to_string(delta.size()) +
-                           " coefficients");
+        const std::size_t row = pf * n_dirs + d;
+        if (offsets[row] > offsets[row + 1] || offsets[row + 1] > delta.size())
+          throw InputError(path + ": '/coefficients/offsets' is not a valid partition of " + std::to_string(delta.size()) +
+                           " coefficients (row " + std::to_string(row) + ")");
         std::uint32_t j = 0;
-        for (std::uint32_t e = offsets[d]; e < offsets[d + 1]; ++e) {
-          j = e == offsets[d] ? delta[e] : j + delta[e];
-          if (j >= h.length || (e > offsets[d] && delta[e] == 0))
-            throw InputError(path + ": '" + g + "/index_delta' gives coefficient index " + std::to_string(j) +
+        for (std::uint32_t e = offsets[row]; e < offsets[row + 1]; ++e) {
+          j = e == offsets[row] ? delta[e] : j + delta[e];
+          if (j >= h.length || (e > offsets[row] && delta[e] == 0))
+            throw InputError(path + ": '/coefficients/index_delta' gives coefficient index " + std::to_string(j) +
                              " outside [0, " + std::to_string(h.length) + ") or repeated");
           out[d].index.push_back(j);
           for (std::size_t k = 0; k < n_terms; ++k)
-            out[d].value.push_back(static_cast<float>(values[e * n_terms + k]) * scale[d * n_terms + k]);
+            out[d].value.push_back(static_cast<float>(values[e * n_terms + k]) * scale[row * n_terms + k]);
         }
       }
     }
