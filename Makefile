@@ -1,6 +1,6 @@
 # The two commands a new user runs: `make demo` and `make test`. Both install missing Debian
 # packages (cluster/install-deps.sh), configure with a CMake preset and build.
-#   make demo                 2-rank demo job, output under out/demo/
+#   make demo                 a 3-proxy PAN bank on 2 ranks (out/demo/bank.h5) and its summary
 #   make test                 every test (ctest), in build/$(PRESET)
 #   make bench                Google Benchmark suite, JSON in out/bench/
 #   make PRESET=asan test     the same with ASan+UBSan (presets: release debug asan ci)
@@ -28,8 +28,8 @@ build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j$(JOBS)
 
 demo: build
-	mpiexec -n 2 $(BUILD)/bin/clatter-bank field --out out/demo/field.h5 --log-view
-	$(PYTHON) analysis/field_check.py out/demo/field.h5
+	mpiexec -n 2 $(BUILD)/bin/clatter-bank pan -c configs/pan-demo.toml -o out/demo/bank.h5 --log-view
+	$(BUILD)/bin/clatter-bank info out/demo/bank.h5
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300
