@@ -35,31 +35,28 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
   jobs::GlobalOptions global;
   jobs::add_global_options(app, global);
 
-  jobs::ConfigOptions field_config;
-  std::string field_out = "field.h5";
-  auto* field = app.add_subcommand("field", "sample the exact pressure of a psi-driven monopole on a distributed "
-                                            "grid and write it with collective HDF5 (the foundation demo)");
-  jobs::add_config_options(*field, field_config);
-  field->add_option("-o,--out", field_out, "output HDF5 file")->capture_default_str();
-
-  jobs::ConfigOptions solve_config;
-  std::string solve_out = "raw.h5";
+  // A job subcommand: its config options, its output file and, for long jobs, progress lines.
   double progress_interval_s = 10.0;
-  auto* solve = app.add_subcommand("solve", "FDTD solves around one rigid ellipsoid for the chosen rigid-body "
-                                            "fields, recorded at listener points");
-  jobs::add_config_options(*solve, solve_config);
-  solve->add_option("-o,--out", solve_out, "output HDF5 file of raw time series")->capture_default_str();
-  solve->add_option("--progress-interval", progress_interval_s, "seconds between progress lines (0: none)")
-      ->capture_default_str();
-
-  jobs::ConfigOptions pan_config;
-  std::string pan_out = "bank.h5";
-  auto* pan = app.add_subcommand("pan", "build a PAN proxy bank: FDTD solves over the (B, C) proxies, wavelet fit, "
-                                        "compression (docs/bank-format.md)");
-  jobs::add_config_options(*pan, pan_config);
-  pan->add_option("-o,--out", pan_out, "output PAN bank")->capture_default_str();
-  pan->add_option("--progress-interval", progress_interval_s, "seconds between progress lines (0: none)")
-      ->capture_default_str();
+  struct Job {
+    CLI::App* app;
+    jobs::ConfigOptions config;
+    std::string out;
+  };
+  auto add_job = [&](Job& job, const char* name, const char* help, const char* out_help, bool progress) {
+    job.app = app.add_subcommand(name, help);
+    jobs::add_config_options(*job.app, job.config);
+    job.app->add_option("-o,--out", job.out, out_help)->capture_default_str();
+    if (progress)
+      job.app->add_option("--progress-interval", progress_interval_s, "seconds between progress lines (0: none)")
+          ->capture_default_str();
+  };
+  Job field{nullptr, {}, "field.h5"}, solve{nullptr, {}, "raw.h5"}, pan{nullptr, {}, "bank.h5"};
+  add_job(field, "field", "sample the exact pressure of a psi-driven monopole on a distributed grid and write it "
+                          "with collective HDF5 (the foundation demo)", "output HDF5 file", false);
+  add_job(solve, "solve", "FDTD solves around one rigid ellipsoid for the chosen rigid-body fields, recorded at "
+                          "listener points", "output HDF5 file of raw time series", true);
+  add_job(pan, "pan", "build a PAN proxy bank: FDTD solves over the (B, C) proxies, wavelet fit, compression "
+                      "(docs/bank-format.md)", "output PAN bank", true);
 
   std::string bank_path;
   auto* info = app.add_subcommand("info", "describe a PAN bank: proxies, fields, epsilon, size, provenance");
@@ -103,15 +100,15 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
     return std::nullopt;
   };
 
-  if (field->parsed()) {
-    auto config = config_for(jobs::field_schema(), field_config);
+  if (field.app->parsed()) {
+    auto config = config_for(jobs::field_schema(), field.config);
     if (!config) return kExitOk;
     Stage stage("field");
-    jobs::run_field(world, *config, field_out, jobs::command_line(argc, argv));
+    jobs::run_field(world, *config, field.out, jobs::command_line(argc, argv));
   }
 
-  if (solve->parsed()) {
-    auto config = config_for(jobs::solve_schema(), solve_config);
+  if (solve.app->parsed()) {
+    auto config = config_for(jobs::solve_schema(), solve.config);
     if (!config) return kExitOk;
     Stage stage("solve");
     jobs::SolveSpec spec;
@@ -119,13 +116,13 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
     auto result = jobs::run_solve(world, spec, progress_interval_s);
     if (session.is_root()) {
       Stage write("write");
-      jobs::write_raw(solve_out, spec, result, *config, jobs::command_line(argc, argv), session.size());
-      spdlog::info("solve: wrote {}", solve_out);
+      jobs::write_raw(solve.out, spec, result, *config, jobs::command_line(argc, argv), session.size());
+      spdlog::info("solve: wrote {}", solve.out);
     }
   }
 
-  if (pan->parsed()) {
-    auto config = config_for(jobs::pan_schema(), pan_config);
+  if (pan.app->parsed()) {
+    auto config = config_for(jobs::pan_schema(), pan.config);
     if (!config) return kExitOk;
     Stage stage("pan");
     jobs::PanSpec spec;
@@ -143,8 +140,8 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
     }
     if (session.is_root()) {
       Stage write("write");
-      io::write_pan_bank(pan_out, bank, jobs::command_line(argc, argv), config->to_toml(), session.size());
-      spdlog::info("pan: wrote {}", pan_out);
+      io::write_pan_bank(pan.out, bank, jobs::command_line(argc, argv), config->to_toml(), session.size());
+      spdlog::info("pan: wrote {}", pan.out);
     }
   }
 
