@@ -137,14 +137,15 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                         const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s) {
   SolveSpec s = spec.solve;
   s.problem.body = {spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1]};
-  for (const auto& x : extra_listeners_m) s.listeners_m.push_back(x);
-  // make_pan_spec checked the listeners against the bounding sphere; extra ones are checked here.
+  // make_pan_spec checked the fitted listeners against the bounding sphere; the extra ones are new.
   auto probe = s.problem;
   probe.field = 1;
-  for (std::size_t l = 0; l < s.listeners_m.size(); ++l)
-    if (auto why = kernels::fdtd::listener_problem(probe, s.listeners_m[l]))
-      throw InputError(fmt::format("listener {} for proxy (B, C) = ({}, {}): {}", l + 1, spec.proxies_bc_m[proxy][0],
-                                   spec.proxies_bc_m[proxy][1], *why));
+  for (std::size_t l = 0; l < extra_listeners_m.size(); ++l) {
+    s.listeners_m.push_back(extra_listeners_m[l]);
+    if (auto why = kernels::fdtd::listener_problem(probe, extra_listeners_m[l]))
+      throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {}", l + 1,
+                                   spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1], *why));
+  }
   SolveResult raw = run_solve(comm, s, progress_interval_s);
   ProxyResult out;
   if (mpi::rank(comm) != 0) return out;

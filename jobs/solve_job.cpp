@@ -163,30 +163,35 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
   const fdtd::FlushSubnormals flush;
   Progress progress(progress_interval_s, static_cast<long long>(steps) * static_cast<long long>(spec.fields.size()), cells);
   const auto t_begin = std::chrono::steady_clock::now();
+  // One solver for every field: the cut-cell geometry, the layer and the storage are built once.
+  std::optional<fdtd::Solver> solver;
+  {
+    Stage stage("setup");
+    fdtd::Problem problem = spec.problem;
+    problem.field = spec.fields.front();
+    solver.emplace(problem, owned);
+    const auto& k = solver->counts();
+    spdlog::debug("solve: rank owns {} cells: {} bulk, {} cut, {} solid, {} PML; {:.1f} MiB", k.owned, k.bulk, k.cut,
+                  k.solid, k.pml, static_cast<double>(k.bytes) / 1048576.0);
+    double bytes = static_cast<double>(k.bytes), total = 0;
+    mpi::check(MPI_Allreduce(&bytes, &total, 1, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
+    const fdtd::Box in = grid.interior();
+    spdlog::info("solve: memory {:.1f} MiB: {:.1f} bytes per cell, {:.1f} per cell outside the PML", total / 1048576.0,
+                 total / static_cast<double>(cells), total / static_cast<double>(in.cells()));
+  }
   for (std::size_t fi = 0; fi < spec.fields.size(); ++fi) {
     fdtd::Problem problem = spec.problem;
     problem.field = spec.fields[fi];
-    std::optional<fdtd::Solver> solver;
     std::vector<Probe> probes;
-    std::vector<fdtd::Stencil> stencils;
+    std::vector<fdtd::Stencil> stencils;  // per field: mirrored corners carry the field's parity
     {
-      Stage stage("setup");
-      solver.emplace(problem, owned);
+      Stage stage("start");
+      solver->start(problem.field);
       for (int l = 0; l < static_cast<int>(spec.listeners_m.size()); ++l) {
         stencils.push_back(fdtd::listener_stencil(problem, spec.listeners_m[static_cast<std::size_t>(l)]));
         for (int c = 0; c < 8; ++c)
           if (owned.contains(stencils.back().cell[static_cast<std::size_t>(c)]))
             probes.push_back({l, c, solver->layout().at(stencils.back().cell[static_cast<std::size_t>(c)])});
-      }
-      if (fi == 0) {
-        const auto& k = solver->counts();
-        spdlog::debug("solve: rank owns {} cells: {} bulk, {} cut, {} solid, {} PML; {:.1f} MiB", k.owned, k.bulk,
-                      k.cut, k.solid, k.pml, static_cast<double>(k.bytes) / 1048576.0);
-        double bytes = static_cast<double>(k.bytes), total = 0;
-        mpi::check(MPI_Allreduce(&bytes, &total, 1, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
-        const fdtd::Box in = grid.interior();
-        spdlog::info("solve: memory {:.1f} MiB: {:.1f} bytes per cell, {:.1f} per cell outside the PML", total / 1048576.0,
-                     total / static_cast<double>(cells), total / static_cast<double>(in.cells()));
       }
     }
     std::vector<float> recorded(probes.size() * static_cast<std::size_t>(spec.n_samples));

@@ -1,5 +1,6 @@
 #include "kernels/fdtd/pml.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -69,6 +70,15 @@ Pml::Pml(const Problem& problem, const Layout& layout)
         }
         regions_.push_back(std::move(r));
       }
+}
+
+void Pml::reset() {
+  for (auto& r : regions_)
+    for (int a = 0; a < 3; ++a) {
+      std::fill(r.v[a].begin(), r.v[a].end(), 0.0f);
+      std::fill(r.split_now[a].begin(), r.split_now[a].end(), 0.0f);
+      std::fill(r.split_old[a].begin(), r.split_old[a].end(), 0.0f);
+    }
 }
 
 long long Pml::cells() const {

@@ -15,6 +15,7 @@ class Pml {
 
   // p_now: pressure at t_n with filled halo; p_next: holds p at t_(n-1) on entry, t_(n+1) on exit.
   void update(const float* p_now, float* p_next);
+  void reset();  // back to rest (all auxiliary fields 0)
   long long cells() const;
   std::size_t bytes() const;
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "kernels/pulse.hpp"
 
@@ -55,7 +56,8 @@ Solver::Solver(const Problem& problem, const Box& owned)
   counts_.pml = pml_->cells();
   counts_.cut = static_cast<long long>(cut_.index.size());
   counts_.bytes = 2 * now_.size() * sizeof(float) + pml_->bytes() +
-                  cut_.index.size() * (sizeof(long) + 9 * sizeof(float));
+                  cut_.index.size() * (sizeof(long) + sizeof(float) * (1 + 6 + 6 + 1 + 1));
+  start(problem.field);
 }
 
 void Solver::build_cut_cells() {
@@ -91,9 +93,23 @@ void Solver::build_cut_cells() {
         std::array<float, 6> alpha{};
         for (int f = 0; f < 6; ++f) alpha[f] = static_cast<float>(geo.alpha[f]);
         cut_.alpha.push_back(alpha);
-        cut_.body.push_back(static_cast<float>(-rho_c2_dt2 / (beta_eff * dx) * geo.body_flux[problem_.field - 1]));
+        std::array<float, 6> body{};
+        for (int f = 0; f < 6; ++f)
+          body[static_cast<std::size_t>(f)] =
+              static_cast<float>(-rho_c2_dt2 / (beta_eff * dx) * geo.body_flux[static_cast<std::size_t>(f)]);
+        cut_.body_all.push_back(body);
       }
   cut_.old.resize(cut_.index.size());
+}
+
+void Solver::start(int field) {
+  if ((field == 0) != (problem_.field == 0)) throw std::logic_error("Solver::start: monopole and body fields do not mix");
+  problem_.field = field;
+  std::fill(now_.begin(), now_.end(), 0.0f);
+  std::fill(next_.begin(), next_.end(), 0.0f);
+  pml_->reset();
+  cut_.body.resize(cut_.body_all.size());
+  for (std::size_t c = 0; c < cut_.body_all.size(); ++c) cut_.body[c] = field > 0 ? cut_.body_all[c][static_cast<std::size_t>(field - 1)] : 0.0f;
 }
 
 void Solver::fill_mirror_ghosts() {

@@ -18,6 +18,11 @@ class Solver {
  public:
   Solver(const Problem& problem, const Box& owned);
 
+  // Zeroes every field and selects rigid-body field 1..6 of the same body (0 for a monopole
+  // problem), so one Solver serves every field of a run: its geometry, layer and storage are built
+  // once. The constructor starts problem.field.
+  void start(int field);
+
   const Layout& layout() const { return layout_; }
   const Problem& problem() const { return problem_; }
   float* pressure() { return now_.data(); }  // p at t_n, with its one-cell halo
@@ -56,7 +61,8 @@ class Solver {
     std::vector<long> index;
     std::vector<float> gain;                 // lambda^2 / beta_eff
     std::vector<std::array<float, 6>> alpha;
-    std::vector<float> body;                 // -(rho c^2 dt^2 / (beta_eff dx)) * body flux of the field
+    std::vector<std::array<float, 6>> body_all;  // -(rho c^2 dt^2 / (beta_eff dx)) * body flux, fields 1..6
+    std::vector<float> body;                 // the started field's column of body_all
     std::vector<float> old;                  // p^{n-1}, kept before the bulk overwrites it
   } cut_;
   std::vector<std::pair<long, float>> point_source_;  // cell, rho c^2 dt^2 / dx^3 share
