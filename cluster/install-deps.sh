@@ -18,6 +18,8 @@ packages=(
   libgtest-dev libbenchmark-dev
   # analysis scripts (run with /usr/bin/python3)
   python3 python3-numpy python3-h5py python3-matplotlib
+  # the private single-node Slurm of the `slurm` tests (and the real thing on a workstation)
+  slurmctld slurmd slurm-client munge
 )
 
 # One dpkg-query for all: packages it does not list as installed are missing.

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
+#include <map>
 #include <optional>
 
 #include "core/build_info.hpp"
@@ -74,6 +75,10 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
                                                  "0: the bank's rate")
       ->capture_default_str();
   probe->add_option("--scale", probe_req.scale, "beta: the proxy scaled by beta (eq. 10)")->capture_default_str();
+  probe->add_option("--interpolation", probe_req.interpolation,
+                    "between directions: quadratic (default) or linear (the paper's)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, kernels::pan::Interpolation>{
+          {"linear", kernels::pan::Interpolation::linear}, {"quadratic", kernels::pan::Interpolation::quadratic}}));
 
   // Every rank parses the same argv, so a usage error is the same everywhere.
   bool exit_now = false;

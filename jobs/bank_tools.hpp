@@ -3,6 +3,8 @@
 #include <array>
 #include <string>
 
+#include "kernels/pan/directions.hpp"
+
 namespace clatter::jobs {
 
 // A summary of the bank: proxies, fields, epsilon, sizes, provenance. Throws InputError.
@@ -15,6 +17,7 @@ struct ProbeRequest {
   std::array<double, 3> point_m{};
   double rate_hz = 0;  // 0: the bank's own rate
   double scale = 1.0;  // beta of eq. (10)
+  kernels::pan::Interpolation interpolation = kernels::pan::Interpolation::quadratic;  // over directions
 };
 
 // "t_s,p_Pa" CSV lines of p_i^(beta h)(x, t). Throws InputError for a proxy or field not in the

@@ -34,11 +34,11 @@ const io::Schema& pan_schema() {
         {"time.dt_s", 1.0 / 24000.0, "time step = PAN sample interval [s]; CFL limit dx / (c sqrt 3)", {0.0, 1.0, true}},
         {"time.tail_s", 0.012, "recorded time after the pulse reaches the farthest radius [s]", {0.0, 10.0, true}},
         {"solve.fields", io::RealList{1, 2, 3, 4, 5, 6}, "rigid-body fields to solve and store", {1, 6}},
-        {"fit.radii_m", io::RealList{0.6, 0.75, 0.95, 1.2, 1.5},
+        {"fit.radii_m", io::RealList{0.7, 0.85, 1.0, 1.2, 1.5},
          "the M listening radii [m], outside the bounding sphere; rounded to whole steps of c dt", {0.0, 1e4, true}},
         {"fit.terms", std::int64_t{2}, "N, terms of the 1/R^k series (8)", {1, 8}},
-        {"fit.divisions", std::int64_t{8}, "octant edges cut in d: (d+1)(d+2)/2 directions, d^2 triangles; 8: the "
-                                           "paper's 45 and 64", {1, 64}},
+        {"fit.divisions", std::int64_t{8}, "octant edges cut in d (even): (d+1)(d+2)/2 directions, d^2 triangles; 8: "
+                                           "the paper's 45 and 64", {2, 64}},
         {"fit.epsilon", 0.01, "keep wavelet coefficient j iff some |p^_i^j| >= epsilon ||p^_i||_inf", {0.0, 1.0}},
         {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
     });
@@ -68,6 +68,8 @@ PanSpec make_pan_spec(const io::Config& config) {
   }
   spec.terms = static_cast<int>(config.integer("fit.terms"));
   spec.divisions = static_cast<int>(config.integer("fit.divisions"));
+  if (spec.divisions % 2 != 0)  // the quadratic direction elements group the triangles in fours
+    throw InputError(fmt::format("config: key 'fit.divisions' has {}: must be even", spec.divisions));
   spec.epsilon = config.real("fit.epsilon");
   const double c_m_s = config.real("medium.c_m_s"), dt = config.real("time.dt_s"), dx = config.real("grid.dx_m");
   for (double r : config.reals("fit.radii_m")) {

@@ -40,30 +40,50 @@ std::vector<std::array<int, 3>> direction_triangles(int divisions) {
   return out;
 }
 
-DirectionWeights locate_direction(const std::array<double, 3>& d, int divisions) {
-  const int kDivisions = divisions;
-  auto vertex_index = [&](int a, int b) { return ::clatter::kernels::pan::vertex_index(divisions, a, b); };
+DirectionWeights locate_direction(const std::array<double, 3>& d, int divisions, Interpolation interpolation) {
+  const bool quadratic = interpolation == Interpolation::quadratic;
+  if (quadratic && divisions % 2 != 0)
+    throw std::invalid_argument("locate_direction: quadratic interpolation needs an even number of divisions");
   const double s = d[0] + d[1] + d[2];
   if (!(s > 0) || d[0] < 0 || d[1] < 0 || d[2] < 0)
     throw std::invalid_argument("locate_direction: direction outside the positive octant");
-  const double ua = kDivisions * d[0] / s, ub = kDivisions * d[1] / s;
-  int a = std::min(static_cast<int>(std::floor(ua)), kDivisions);
-  int b = std::min(static_cast<int>(std::floor(ub)), kDivisions - a);
-  double fa = ua - a, fb = ub - b;
-  DirectionWeights w;
-  if (a + b == kDivisions) {  // on the far edge: the vertex itself
-    w.vertex = {vertex_index(a, b), vertex_index(a, b), vertex_index(a, b)};
-    w.weight = {1.0, 0.0, 0.0};
-    return w;
+  // The element lattice: the triangulation itself (linear) or its 2x coarser quadratic elements.
+  const int cells = quadratic ? divisions / 2 : divisions, stride = quadratic ? 2 : 1;
+  const double ua = cells * d[0] / s, ub = cells * d[1] / s;
+  int a = std::min(static_cast<int>(std::floor(ua)), cells);
+  int b = std::min(static_cast<int>(std::floor(ub)), cells - a);
+  if (a + b == cells) {  // on the far edge: use the element just inside it
+    if (a > 0)
+      --a;
+    else
+      --b;
   }
-  if (fa + fb <= 1.0) {
-    w.vertex = {vertex_index(a, b), vertex_index(a + 1, b), vertex_index(a, b + 1)};
-    w.weight = {1.0 - fa - fb, fa, fb};
+  const double fa = ua - a, fb = ub - b;
+  // Element corners (lattice coordinates of the fine triangulation) and barycentric coordinates.
+  std::array<std::array<int, 2>, 3> corner;
+  std::array<double, 3> l;
+  // Rounding may put a point of the far edge just past it: keep it in the element below.
+  if (fa + fb <= 1.0 || a + b + 1 == cells) {
+    corner = {{{a, b}, {a + 1, b}, {a, b + 1}}};
+    l = {1.0 - fa - fb, fa, fb};
   } else {
-    w.vertex = {vertex_index(a + 1, b + 1), vertex_index(a + 1, b), vertex_index(a, b + 1)};
-    w.weight = {fa + fb - 1.0, 1.0 - fb, 1.0 - fa};
+    corner = {{{a + 1, b + 1}, {a + 1, b}, {a, b + 1}}};
+    l = {fa + fb - 1.0, 1.0 - fb, 1.0 - fa};
   }
-  for (double& x : w.weight) x = std::max(x, 0.0);
+  for (auto& c : corner) c = {stride * c[0], stride * c[1]};
+  for (double& x : l) x = std::clamp(x, 0.0, 1.0);
+  DirectionWeights w;
+  w.count = quadratic ? 6 : 3;
+  for (std::size_t i = 0; i < 3; ++i) {
+    w.vertex[i] = vertex_index(divisions, corner[i][0], corner[i][1]);
+    w.weight[i] = quadratic ? l[i] * (2 * l[i] - 1) : l[i];
+  }
+  if (quadratic)  // the six-node element: corners l(2l - 1), edge midpoints 4 l_i l_j
+    for (std::size_t i = 0; i < 3; ++i) {
+      const std::size_t j = (i + 1) % 3;
+      w.vertex[3 + i] = vertex_index(divisions, (corner[i][0] + corner[j][0]) / 2, (corner[i][1] + corner[j][1]) / 2);
+      w.weight[3 + i] = 4 * l[i] * l[j];
+    }
   return w;
 }
 

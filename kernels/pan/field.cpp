@@ -8,7 +8,8 @@
 
 namespace clatter::kernels::pan {
 
-Series evaluate(const ProxyField& f, const std::array<double, 3>& x_m, double beta, double output_rate_hz) {
+Series evaluate(const ProxyField& f, const std::array<double, 3>& x_m, double beta, double output_rate_hz,
+                Interpolation interpolation) {
   if (!(beta > 0)) throw std::invalid_argument("PAN evaluate: scale beta must be > 0");
   // Eq. (10): P^(beta h)(x, t) = beta^s p^(h)(x / beta, t / beta), s = 1 (translation) or 2 (rotation).
   std::array<double, 3> y{};
@@ -30,10 +31,10 @@ Series evaluate(const ProxyField& f, const std::array<double, 3>& x_m, double be
   std::vector<double> c(n, 0.0);
   const int divisions = divisions_of(f.directions.size());
   if (divisions == 0) throw std::invalid_argument("PAN evaluate: direction count is not an octant triangulation");
-  const DirectionWeights w = locate_direction(y, divisions);
+  const DirectionWeights w = locate_direction(y, divisions, interpolation);
   double delay = 0;  // the direction's alignment, interpolated like the signals
-  for (int v = 0; v < 3; ++v) {
-    if (!(w.weight[v] > 0)) continue;
+  for (std::size_t v = 0; v < static_cast<std::size_t>(w.count); ++v) {
+    if (w.weight[v] == 0) continue;
     const auto vertex = static_cast<std::size_t>(w.vertex[v]);
     accumulate(f.directions.at(vertex), f.terms, r, w.weight[v], c);
     if (!f.delay_steps.empty()) delay += w.weight[v] * f.delay_steps.at(vertex);

@@ -5,6 +5,7 @@
 #include <array>
 #include <vector>
 
+#include "kernels/pan/directions.hpp"
 #include "kernels/pan/fit.hpp"
 
 namespace clatter::kernels::pan {
@@ -28,6 +29,7 @@ struct Series {
 
 // output_rate_hz = 0: the full PAN rate. The caller checks that |x| / beta lies outside the
 // unscaled proxy's bounding sphere (where the series (8) holds).
-Series evaluate(const ProxyField& f, const std::array<double, 3>& x_m, double beta = 1.0, double output_rate_hz = 0.0);
+Series evaluate(const ProxyField& f, const std::array<double, 3>& x_m, double beta = 1.0, double output_rate_hz = 0.0,
+                Interpolation interpolation = Interpolation::quadratic);
 
 }  // namespace clatter::kernels::pan

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <stdexcept>
 
 #include "kernels/fdtd/geometry.hpp"
 #include "kernels/pan/directions.hpp"
@@ -86,16 +88,50 @@ TEST(PanDirections, OctantTriangulation) {
   ASSERT_EQ(direction_vertices().size(), 45u);
   ASSERT_EQ(direction_triangles().size(), 64u);
   for (const auto& v : direction_vertices()) EXPECT_NEAR(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], 1.0, 1e-15);
-  for (int i = 0; i < 45; ++i) {  // a vertex locates onto itself
-    const auto w = locate_direction(direction_vertices()[static_cast<std::size_t>(i)]);
-    double at_i = 0, sum = 0;
-    for (int c = 0; c < 3; ++c) {
-      sum += w.weight[c];
-      if (w.vertex[c] == i) at_i += w.weight[c];
+  for (auto mode : {Interpolation::linear, Interpolation::quadratic})
+    for (int i = 0; i < 45; ++i) {  // a vertex locates onto itself
+      const auto w = locate_direction(direction_vertices()[static_cast<std::size_t>(i)], kPaperDivisions, mode);
+      double at_i = 0, sum = 0;
+      for (std::size_t c = 0; c < static_cast<std::size_t>(w.count); ++c) {
+        sum += w.weight[c];
+        if (w.vertex[c] == i) at_i += w.weight[c];
+      }
+      EXPECT_NEAR(sum, 1.0, 1e-12);
+      EXPECT_NEAR(at_i, 1.0, 1e-12) << i;
     }
-    EXPECT_NEAR(sum, 1.0, 1e-12);
-    EXPECT_NEAR(at_i, 1.0, 1e-12) << i;
+  EXPECT_THROW(locate_direction({1, 1, 1}, 7, Interpolation::quadratic), std::invalid_argument);
+}
+
+TEST(PanDirections, InterpolationIsExactForPolynomialsOfItsOrder) {
+  // In the gnomonic coordinates (u, v) = (x, y) / (x + y + z) the elements are flat triangles, so
+  // barycentric interpolation reproduces every linear function of (u, v) and the six-node
+  // elements every quadratic one, anywhere in the octant (including element edges).
+  auto linear = [](double u, double v) { return 0.3 - 1.7 * u + 2.9 * v; };
+  auto quadratic = [&](double u, double v) { return linear(u, v) + 4.1 * u * u - 2.3 * u * v + 0.7 * v * v; };
+  const auto vertices = direction_vertices(kPaperDivisions);
+  auto interpolate = [&](const std::array<double, 3>& d, Interpolation mode, auto f) {
+    const auto w = locate_direction(d, kPaperDivisions, mode);
+    double sum = 0;
+    for (std::size_t c = 0; c < static_cast<std::size_t>(w.count); ++c) {
+      const auto& x = vertices[static_cast<std::size_t>(w.vertex[c])];
+      const double s = x[0] + x[1] + x[2];
+      sum += w.weight[c] * f(x[0] / s, x[1] / s);
+    }
+    return sum;
+  };
+  std::uint64_t state = 12345;
+  auto uniform = [&] { return static_cast<double>((state = state * 6364136223846793005ULL + 1442695040888963407ULL) >> 11) * 0x1.0p-53; };
+  for (int k = 0; k < 2000; ++k) {
+    std::array<double, 3> d{uniform(), uniform(), uniform()};
+    if (k % 10 == 0) d[k % 3] = 0;  // octant boundary planes
+    const double s = d[0] + d[1] + d[2];
+    EXPECT_NEAR(interpolate(d, Interpolation::linear, linear), linear(d[0] / s, d[1] / s), 1e-12);
+    EXPECT_NEAR(interpolate(d, Interpolation::quadratic, quadratic), quadratic(d[0] / s, d[1] / s), 1e-12);
   }
+  // And linear interpolation does not reproduce the quadratic (so the check above can fail).
+  const std::array<double, 3> mid{0.37, 0.52, 0.77};
+  const double s = mid[0] + mid[1] + mid[2];
+  EXPECT_GT(std::abs(interpolate(mid, Interpolation::linear, quadratic) - quadratic(mid[0] / s, mid[1] / s)), 1e-4);
 }
 
 TEST(PanFit, ExactSeriesIsRecoveredAtAHeldOutRadiusAndDirection) {
