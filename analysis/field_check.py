@@ -24,7 +24,7 @@ def psi(t, h):
 def check(path):
     with h5py.File(path, "r") as f:
         assert f.attrs["format"] == "clatter-field", f"{path}: format {f.attrs['format']!r}"
-        assert f.attrs["format_version"] == 1, f"{path}: format_version {f.attrs['format_version']}"
+        assert f.attrs["format_version"] == 2, f"{path}: format_version {f.attrs['format_version']}"
         p = f["field/p"]
         assert p.attrs["units"] == "Pa" and p.dtype == np.float32 and p.ndim == 3, f"{path}: /field/p"
         x = f["grid/x_m"][...]

@@ -88,8 +88,66 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
   write_dataset<std::int16_t>(file, "/coefficients/values", quantized, {delta.size(), n_terms}, "1", true);
   write_dataset<float>(file, "/coefficients/scale", scale, {n_proxies, 6, n_dirs, n_terms}, "Pa m^k per unit acceleration",
                        true);
+  create_group(file, "/sweep");
+  const auto join = [](const std::vector<std::string>& lines) {
+    std::string text;
+    for (const auto& l : lines) text += l + "\n";
+    return text;
+  };
+  write_attribute<std::uint32_t>(file, "/sweep", "tasks_total", bank.sweep.tasks_total);
+  write_attribute<std::uint32_t>(file, "/sweep", "n_failed", static_cast<std::uint32_t>(bank.sweep.failed.size()));
+  write_attribute<std::uint32_t>(file, "/sweep", "n_missing", static_cast<std::uint32_t>(bank.sweep.missing.size()));
+  write_attribute(file, "/sweep", "failed", join(bank.sweep.failed));
+  write_attribute(file, "/sweep", "missing", join(bank.sweep.missing));
   write_provenance(file, command, config_toml, n_ranks);
   file.commit();
+}
+
+void write_pan_task(File& file, const std::string& group, const PanTaskResult& task, int terms) {
+  create_group(file, group);
+  write_attribute<std::uint32_t>(file, group, "proxy", task.proxy);
+  write_attribute<double>(file, group, "b_m", task.b_m);
+  write_attribute<double>(file, group, "c_m", task.c_m);
+  write_attribute<std::int32_t>(file, group, "field", task.field);
+  std::vector<std::uint32_t> offsets{0}, index;
+  std::vector<float> values;
+  for (const auto& d : task.directions) {
+    index.insert(index.end(), d.index.begin(), d.index.end());
+    values.insert(values.end(), d.value.begin(), d.value.end());
+    offsets.push_back(static_cast<std::uint32_t>(index.size()));
+  }
+  const auto n_terms = static_cast<std::size_t>(terms);
+  write_dataset<std::uint32_t>(file, group + "/offsets", offsets, {offsets.size()}, "1", true);
+  write_dataset<std::uint32_t>(file, group + "/index", index, {index.size()}, "1", true);
+  write_dataset<float>(file, group + "/values", values, {index.size(), n_terms}, "Pa m^k per unit acceleration", true);
+}
+
+PanTaskResult read_pan_task(const File& file, const std::string& group, int terms, std::size_t n_directions,
+                            std::uint32_t length) {
+  PanTaskResult t;
+  t.proxy = read_attribute<std::uint32_t>(file, group, "proxy");
+  t.b_m = read_attribute<double>(file, group, "b_m");
+  t.c_m = read_attribute<double>(file, group, "c_m");
+  t.field = read_attribute<std::int32_t>(file, group, "field");
+  auto offsets = read_dataset<std::uint32_t>(file, group + "/offsets", {static_cast<long long>(n_directions) + 1}, "1");
+  Dims n;
+  auto index = read_dataset<std::uint32_t>(file, group + "/index", {-1}, "1", &n);
+  auto values = read_dataset<float>(file, group + "/values", {static_cast<long long>(n[0]), terms},
+                                    "Pa m^k per unit acceleration");
+  const auto n_terms = static_cast<std::size_t>(terms);
+  for (std::size_t d = 0; d < n_directions; ++d) {
+    if (offsets[d] > offsets[d + 1] || offsets[d + 1] > index.size())
+      throw InputError(file.path() + ": '" + group + "/offsets' is not a partition of the coefficients");
+    PanTerms terms_d;
+    for (std::uint32_t e = offsets[d]; e < offsets[d + 1]; ++e) {
+      if (index[e] >= length || (e > offsets[d] && index[e] <= index[e - 1]))
+        throw InputError(file.path() + ": '" + group + "/index' is out of range or not ascending");
+      terms_d.index.push_back(index[e]);
+      for (std::size_t k = 0; k < n_terms; ++k) terms_d.value.push_back(values[e * n_terms + k]);
+    }
+    t.directions.push_back(std::move(terms_d));
+  }
+  return t;
 }
 
 PanBank read_pan_bank(const std::string& path) {
@@ -155,6 +213,18 @@ PanBank read_pan_bank(const std::string& path) {
     }
     bank.proxies.push_back(std::move(proxy));
   }
+  bank.sweep.tasks_total = read_attribute<std::uint32_t>(file, "/sweep", "tasks_total");
+  const auto split = [](const std::string& text) {
+    std::vector<std::string> lines;
+    for (std::size_t p = 0, e; p < text.size(); p = e + 1) {
+      e = text.find('\n', p);
+      if (e == std::string::npos) e = text.size();
+      if (e > p) lines.push_back(text.substr(p, e - p));
+    }
+    return lines;
+  };
+  bank.sweep.failed = split(read_string_attribute(file, "/sweep", "failed"));
+  bank.sweep.missing = split(read_string_attribute(file, "/sweep", "missing"));
   return bank;
 }
 

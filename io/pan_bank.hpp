@@ -7,10 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "io/h5.hpp"
+
 namespace clatter::io {
 
 inline constexpr const char* kPanBankFormat = "clatter-pan-bank";
-inline constexpr int kPanBankFormatVersion = 1;
+inline constexpr int kPanBankFormatVersion = 2;
 
 struct PanBankHeader {
   double c_m_s = 0, rho_kg_m3 = 0, h_s = 0;
@@ -36,9 +38,25 @@ struct PanProxy {
   std::array<std::vector<PanTerms>, 6> fields;  // fields 1..6, one PanTerms per direction
 };
 
+// How complete the sweep that built the bank was (group /sweep): every proxy x field is a task.
+struct SweepStatus {
+  std::uint32_t tasks_total = 0;
+  std::vector<std::string> failed;   // "task: reason"
+  std::vector<std::string> missing;  // tasks never run (interrupted, not in this job's slice)
+};
+
 struct PanBank {
   PanBankHeader header;
   std::vector<PanProxy> proxies;
+  SweepStatus sweep;
+};
+
+// One task of a PAN sweep: one field of one proxy, before quantization (sweep result files).
+struct PanTaskResult {
+  std::uint32_t proxy = 0;  // index in the config's proxy list
+  double b_m = 0, c_m = 0;
+  int field = 0;
+  std::vector<PanTerms> directions;
 };
 
 // Writes atomically (temporary + rename); coefficients quantized to 16 bits per (direction, term)
@@ -49,6 +67,12 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
 // Reads and checks a bank (format, version, every shape and unit, index ranges, checksums);
 // InputError naming the file and what is wrong.
 PanBank read_pan_bank(const std::string& path);
+
+// The payload of a task file under group `group` (the sweep engine owns the file). read_pan_task
+// checks every shape against the header.
+void write_pan_task(File& file, const std::string& group, const PanTaskResult& task, int terms);
+PanTaskResult read_pan_task(const File& file, const std::string& group, int terms, std::size_t n_directions,
+                            std::uint32_t length);
 
 // Bytes of coefficient data (indices, values, scales) as stored before compression.
 std::size_t pan_coefficient_bytes(const PanBank& bank);

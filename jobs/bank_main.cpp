@@ -13,6 +13,8 @@
 #include "jobs/run_options.hpp"
 #include "jobs/solve_job.hpp"
 #include "jobs/pan_job.hpp"
+#include "jobs/pan_sweep.hpp"
+#include "io/content_hash.hpp"
 #include "kernels/pan/directions.hpp"
 #include "jobs/bank_tools.hpp"
 #include "io/pan_bank.hpp"
@@ -28,7 +30,8 @@ using namespace clatter;
 int bank_main(mpi::Session& session, int argc, char** argv) {
   const MPI_Comm world = session.world();
   CLI::App app{"clatter-bank: builds Clatter soundbanks on MPI ranks.\n"
-               "Run under mpirun/srun for more than one rank. Exit codes: 0 done, 1 run-time failure, 2 bad input.",
+               "Run under mpirun/srun for more than one rank. Exit codes: 0 done, 1 run-time failure, 2 bad input,\n"
+               "3 interrupted (SIGTERM/SIGINT; run again with --resume), 4 some sweep tasks failed.",
                "clatter-bank"};
   app.set_version_flag("--version", version_text("clatter-bank"));
   app.require_subcommand(1);
@@ -58,6 +61,25 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
                           "listener points", "output HDF5 file of raw time series", true);
   add_job(pan, "pan", "build a PAN proxy bank: FDTD solves over the (B, C) proxies, wavelet fit, compression "
                       "(docs/bank-format.md)", "output PAN bank", true);
+
+  jobs::PanSweepOptions sweep;
+  pan.app->add_option("--results", sweep.results, "folder of per-task result files (default: OUT.tasks)");
+  pan.app->add_option("--ranks-per-task", sweep.ranks_per_task, "MPI ranks that solve one task together (divides the "
+                                                                 "rank count)")
+      ->capture_default_str();
+  pan.app->add_flag("--resume", sweep.resume, "keep the verified finished tasks in --results and do the rest");
+  pan.app->add_option("--slice", sweep.slice, "K/N: only tasks t with t % N == K, no merge (Slurm job arrays)");
+  pan.app->add_flag("--keep-results", sweep.keep_results, "keep the task files after a complete merge");
+
+  std::string merge_results, merge_out = "bank.h5";
+  auto* merge = app.add_subcommand("merge", "merge a sweep's results folder into a PAN bank (after job array slices)");
+  merge->add_option("--results", merge_results, "the sweep's results folder")->required();
+  merge->add_option("-o,--out", merge_out, "output PAN bank")->capture_default_str();
+
+  std::string checksum_path;
+  auto* checksum = app.add_subcommand("checksum", "print a content hash of a Clatter HDF5 file that leaves out "
+                                                  "/provenance/run (who ran it, when, on how many ranks)");
+  checksum->add_option("file", checksum_path, "HDF5 file")->required();
 
   std::string bank_path;
   auto* info = app.add_subcommand("info", "describe a PAN bank: proxies, fields, epsilon, size, provenance");
@@ -105,6 +127,7 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
     return std::nullopt;
   };
 
+  int code = kExitOk;
   if (field.app->parsed()) {
     auto config = config_for(jobs::field_schema(), field.config);
     if (!config) return kExitOk;
@@ -130,24 +153,24 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
     auto config = config_for(jobs::pan_schema(), pan.config);
     if (!config) return kExitOk;
     Stage stage("pan");
-    jobs::PanSpec spec;
-    mpi::agree(world, [&] { spec = jobs::make_pan_spec(*config); });
-    spdlog::info("pan: {} proxies x {} fields, {} directions x {} radii, N = {}, epsilon = {}", spec.proxies_bc_m.size(),
-                 spec.solve.fields.size(), kernels::pan::vertex_count(spec.divisions), spec.radii_m.size(), spec.terms,
-                 spec.epsilon);
-    io::PanBank bank;
-    bank.header = jobs::pan_header(spec);
-    for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) {
-      spdlog::info("pan: proxy {}/{} (B, C) = ({:.4g}, {:.4g}) m", p + 1, spec.proxies_bc_m.size(),
-                   spec.proxies_bc_m[p][0], spec.proxies_bc_m[p][1]);
-      auto result = jobs::build_proxy(world, spec, p, {}, progress_interval_s);
-      bank.proxies.push_back(std::move(result.proxy));
-    }
-    if (session.is_root()) {
-      Stage write("write");
-      io::write_pan_bank(pan.out, bank, jobs::command_line(argc, argv), config->to_toml(), session.size());
-      spdlog::info("pan: wrote {}", pan.out);
-    }
+    sweep.out = pan.out;
+    sweep.progress_interval_s = progress_interval_s;
+    sweep.command = jobs::command_line(argc, argv);
+    code = jobs::run_pan_sweep(world, *config, sweep);
+  }
+
+  if (merge->parsed()) {
+    Stage stage("merge");
+    code = jobs::run_pan_merge(world, merge_results, merge_out, jobs::command_line(argc, argv));
+  }
+
+  if (checksum->parsed()) {
+    std::string text;
+    mpi::agree(world, [&] {
+      auto file = io::File::open(checksum_path);
+      text = io::hash_hex(io::content_hash(file, {{"/provenance/run"}, {}})) + "  " + checksum_path + "\n";
+    });
+    if (session.is_root()) std::fputs(text.c_str(), stdout);
   }
 
   if (info->parsed() || probe->parsed()) {
@@ -161,7 +184,7 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
     auto table = mpi::stage_table(world, stage_log());
     if (session.is_root()) std::fputs(("\n" + table).c_str(), stdout);
   }
-  return kExitOk;
+  return code;
 }
 
 }  // namespace

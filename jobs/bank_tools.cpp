@@ -17,6 +17,7 @@ std::string bank_info(const std::string& path) {
   const auto& h = bank.header;
   auto file = io::File::open(path);
   auto prov = [&](const char* key) { return io::read_string_attribute(file, "/provenance", key); };
+  auto run = [&](const char* key) { return io::read_string_attribute(file, "/provenance/run", key); };
   std::size_t kept = 0;
   for (const auto& p : bank.proxies)
     for (const auto& f : p.fields)
@@ -40,9 +41,15 @@ std::string bank_info(const std::string& path) {
   out += fmt::format("  size:        {:.3f} MB on disk, {} coefficients kept ({:.2f} % of {:.1f} MB as raw float32 q_k)\n",
                      file_mb, kept, 100.0 * file_mb / raw_mb, raw_mb);
   out += fmt::format("  provenance:  clatter {} (git {}), {} ranks, created {}\n", prov("clatter_version"),
-                     prov("git_revision"), io::read_attribute<std::int32_t>(file, "/provenance", "n_ranks"),
-                     prov("created_utc"));
-  out += "  command:     " + prov("command") + "\n";
+                     prov("git_revision"), io::read_attribute<std::int32_t>(file, "/provenance/run", "n_ranks"),
+                     run("created_utc"));
+  out += "  command:     " + run("command") + "\n";
+  const auto& sw = bank.sweep;
+  out += fmt::format("  sweep:       {} of {} tasks (proxy x field) in the bank, {} failed, {} missing\n",
+                     sw.tasks_total - sw.failed.size() - sw.missing.size(), sw.tasks_total, sw.failed.size(),
+                     sw.missing.size());
+  for (const auto& f : sw.failed) out += "    failed:  " + f + "\n";
+  for (const auto& m : sw.missing) out += "    missing: " + m + "\n";
   return out;
 }
 

@@ -15,7 +15,7 @@ namespace clatter::jobs {
 const io::Schema& field_schema();
 
 inline constexpr const char* kFieldFormat = "clatter-field";
-inline constexpr int kFieldFormatVersion = 1;
+inline constexpr int kFieldFormatVersion = 2;
 
 void run_field(MPI_Comm comm, const io::Config& config, const std::string& out_path, const std::string& command);
 

@@ -135,6 +135,68 @@ io::PanBankHeader pan_header(const PanSpec& spec) {
   return h;
 }
 
+std::vector<std::int32_t> proxy_delay_steps(const PanSpec& spec, std::size_t proxy) {
+  std::vector<std::int32_t> out;
+  for (const auto& d : pan::direction_vertices(spec.divisions))
+    out.push_back(pan::support_delay_steps(d, spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1],
+                                           spec.solve.problem.c_m_s, spec.solve.problem.dt_s));
+  return out;
+}
+
+std::vector<PanTask> pan_tasks(const PanSpec& spec) {
+  std::vector<PanTask> tasks;
+  for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p)
+    for (int field : spec.solve.fields)
+      tasks.push_back({p, field, fmt::format("p{:03}-f{}", p, field)});
+  return tasks;
+}
+
+TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s) {
+  PanSpec one = spec;
+  one.solve.fields = {task.field};
+  auto result = build_proxy(group, one, task.proxy, {}, progress_interval_s);
+  if (mpi::rank(group) != 0) return {};
+  io::PanTaskResult r;
+  r.proxy = static_cast<std::uint32_t>(task.proxy);
+  r.b_m = result.proxy.b_m;
+  r.c_m = result.proxy.c_m;
+  r.field = task.field;
+  r.directions = std::move(result.proxy.fields[static_cast<std::size_t>(task.field - 1)]);
+  return [r = std::move(r), terms = spec.terms](io::File& file, const std::string& group_name) {
+    io::write_pan_task(file, group_name, r, terms);
+  };
+}
+
+io::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml) {
+  io::PanBank bank;
+  bank.header = pan_header(spec);
+  for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) {
+    io::PanProxy proxy;
+    proxy.b_m = spec.proxies_bc_m[p][0];
+    proxy.c_m = spec.proxies_bc_m[p][1];
+    proxy.delay_steps = proxy_delay_steps(spec, p);
+    bank.proxies.push_back(std::move(proxy));
+  }
+  const auto tasks = pan_tasks(spec);
+  bank.sweep.tasks_total = static_cast<std::uint32_t>(tasks.size());
+  for (const auto& t : tasks) {
+    const TaskRecord record = inspect_task(results_dir, t.name, config_toml);
+    const std::string label = fmt::format("{} (B, C) = ({:.4g}, {:.4g}) m, field {}", t.name, spec.proxies_bc_m[t.proxy][0],
+                                          spec.proxies_bc_m[t.proxy][1], t.field);
+    if (record.state == TaskState::failed) bank.sweep.failed.push_back(label + ": " + record.reason);
+    if (record.state == TaskState::invalid) bank.sweep.failed.push_back(label + ": unreadable result: " + record.reason);
+    if (record.state == TaskState::missing) bank.sweep.missing.push_back(label);
+    if (record.state != TaskState::done) continue;
+    auto file = io::File::open(task_path(results_dir, t.name));
+    auto r = io::read_pan_task(file, "/result", spec.terms, bank.header.directions.size(), spec.length);
+    if (r.proxy != t.proxy || r.field != t.field)
+      throw InputError(fmt::format("{}: holds proxy {} field {}, expected {} field {}", file.path(), r.proxy, r.field,
+                                   t.proxy, t.field));
+    bank.proxies[t.proxy].fields[static_cast<std::size_t>(t.field - 1)] = std::move(r.directions);
+  }
+  return bank;
+}
+
 ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                         const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s) {
   SolveSpec s = spec.solve;
@@ -155,9 +217,7 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   out.proxy.b_m = spec.proxies_bc_m[proxy][0];
   out.proxy.c_m = spec.proxies_bc_m[proxy][1];
   const auto directions = pan::direction_vertices(spec.divisions);
-  for (const auto& d : directions)
-    out.proxy.delay_steps.push_back(pan::support_delay_steps(d, spec.a_m, out.proxy.b_m, out.proxy.c_m,
-                                                              s.problem.c_m_s, s.problem.dt_s));
+  out.proxy.delay_steps = proxy_delay_steps(spec, proxy);
   std::vector<int> shifts;
   for (int k : spec.shift_steps) shifts.push_back(k - spec.lead_steps);
   const pan::Fitter fitter(spec.radii_m, shifts, spec.terms, spec.length);

@@ -11,6 +11,7 @@
 #include "io/config.hpp"
 #include "io/pan_bank.hpp"
 #include "jobs/solve_job.hpp"
+#include "jobs/sweep.hpp"
 #include "kernels/pan/field.hpp"
 
 namespace clatter::jobs {
@@ -45,6 +46,20 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                         const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s);
 
 io::PanBankHeader pan_header(const PanSpec& spec);
+// Per direction: the proxy's support-distance alignment (kernels/pan/fit.hpp).
+std::vector<std::int32_t> proxy_delay_steps(const PanSpec& spec, std::size_t proxy);
+
+// The sweep (jobs/sweep.hpp): one task per proxy and solved field, named "pNNN-fK".
+struct PanTask {
+  std::size_t proxy = 0;
+  int field = 1;
+  std::string name;
+};
+std::vector<PanTask> pan_tasks(const PanSpec& spec);
+// Solves and fits one task on `group`; the writer of its result on the group's rank 0.
+TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s);
+// The bank from a results folder: every task found done, the others listed as failed or missing.
+io::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml);
 
 // A fitted field as the evaluation library wants it.
 kernels::pan::ProxyField proxy_field(const io::PanBankHeader& header, const io::PanProxy& proxy, int field);

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "core/stage_log.hpp"
 #include "io/h5.hpp"
 #include "io/provenance.hpp"
@@ -141,6 +142,24 @@ class Progress {
   Clock::time_point start_, last_;
 };
 
+// Every rank of the solve agrees every kHealthCheckSteps steps (one small allreduce, far below a
+// step's cost) on whether to go on: a SIGTERM/SIGINT stops the solve (Interrupted), and a
+// non-finite pressure at any listener means the scheme blew up (TaskFailure), so nobody runs on
+// to the end of a worthless solve.
+constexpr int kHealthCheckSteps = 64;
+
+void check_health(MPI_Comm comm, const std::vector<float>& recorded, int n_samples, int n, int field) {
+  int local[2] = {interrupt_requested() ? 1 : 0, 0};
+  for (std::size_t q = static_cast<std::size_t>(n); q < recorded.size(); q += static_cast<std::size_t>(n_samples))
+    if (!std::isfinite(recorded[q])) local[1] = 1;
+  int any[2] = {0, 0};
+  mpi::check(MPI_Allreduce(local, any, 2, MPI_INT, MPI_MAX, comm), "MPI_Allreduce");
+  if (any[1])
+    throw TaskFailure(fmt::format("field {}: the pressure at a listener is not finite at step {} (unstable: "
+                                  "check time.dt_s against the CFL limit and the geometry)", field, n));
+  if (any[0]) throw Interrupted(fmt::format("field {}: interrupted at step {}", field, n));
+}
+
 }  // namespace
 
 SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_interval_s) {
@@ -205,6 +224,7 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
             recorded[q * static_cast<std::size_t>(spec.n_samples) + static_cast<std::size_t>(n)] =
                 p[static_cast<std::size_t>(probes[q].index)];
         }
+        if (n % kHealthCheckSteps == 0 || n == steps) check_health(comm, recorded, spec.n_samples, n, problem.field);
         if (n == steps) break;
         const double t_s = (n - spec.i_time_zero) * problem.dt_s;
         halo.start(solver->pressure());

@@ -16,7 +16,7 @@ namespace clatter::jobs {
 const io::Schema& solve_schema();
 
 inline constexpr const char* kRawFormat = "clatter-fdtd-raw";
-inline constexpr int kRawFormatVersion = 1;
+inline constexpr int kRawFormatVersion = 2;
 
 // A validated solve: everything is checked here, before any stepping.
 struct SolveSpec {

@@ -54,7 +54,7 @@ TEST(H5Parallel, CollectiveBlockWriteLandsEveryCellInPlace) {
         for (int k = 0; k < 5; ++k) wrong += p[idx++] != pattern(i, j, k);
     EXPECT_EQ(wrong, 0u);
     EXPECT_EQ(io::read_dataset<double>(f, "/g/meta", {3}, "m"), (std::vector<double>{1.0, 2.0, 3.0}));
-    EXPECT_EQ(io::read_attribute<std::int32_t>(f, "/provenance", "n_ranks"), mpi::size(MPI_COMM_WORLD));
+    EXPECT_EQ(io::read_attribute<std::int32_t>(f, "/provenance/run", "n_ranks"), mpi::size(MPI_COMM_WORLD));
     EXPECT_EQ(io::read_string_attribute(f, "/provenance", "config_toml"), "[a]\nb = 1\n");
   }
 }

@@ -1,0 +1,284 @@
+#include "jobs/sweep.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "core/interrupt.hpp"
+#include "core/stage_log.hpp"
+#include "io/content_hash.hpp"
+#include "io/provenance.hpp"
+#include "mpi/comm.hpp"
+#include "mpi/groups.hpp"
+
+namespace fs = std::filesystem;
+
+namespace clatter::jobs {
+namespace {
+
+const io::HashExclusions kTaskHashExclusions{{}, {"content_hash"}};
+
+std::string sweep_id(const std::string& config_toml) { return io::hash_hex(io::text_hash(config_toml)); }
+
+std::string manifest_path(const std::string& dir) { return (fs::path(dir) / "sweep.toml").string(); }
+
+// The folder and its sweep.toml: created on a fresh start, compared on every later start (job
+// array elements and resumed runs share it).
+void prepare_results_dir(const std::string& dir, const std::string& config_toml) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(fmt::format("--results {}: cannot create the folder: {}", dir, ec.message()));
+  const std::string manifest = manifest_path(dir);
+  if (fs::exists(manifest)) {
+    if (read_sweep_config(dir) != config_toml)
+      throw InputError(fmt::format("--results {}: holds a sweep of another config (see {}); use another folder or the "
+                                   "same config",
+                                   dir, manifest));
+    return;
+  }
+  const std::string temp = fmt::format("{}/.sweep.toml.tmp-{}", dir, ::getpid());
+  {
+    std::ofstream out(temp, std::ios::binary);
+    out << config_toml;
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write " + temp);
+  }
+  fs::rename(temp, manifest);
+}
+
+// Temporaries of task files a killed run left behind (only this slice's: other array elements may
+// be writing theirs right now).
+int remove_stale_temporaries(const std::string& dir, const std::vector<std::string>& names,
+                             const std::vector<std::size_t>& slice) {
+  int removed = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string file = entry.path().filename().string();
+    for (std::size_t t : slice)
+      if (file.rfind("." + names[t] + ".h5.tmp-", 0) == 0) removed += fs::remove(entry.path()) ? 1 : 0;
+  }
+  return removed;
+}
+
+void write_task_file(const std::string& path, const std::string& id, const std::string& name, const std::string& status,
+                     const std::string& reason, const TaskWriter* writer) {
+  auto file = io::File::create(path);
+  io::write_header(file, kTaskFormat, kTaskFormatVersion);
+  io::write_attribute(file, "/", "sweep_id", id);
+  io::write_attribute(file, "/", "task", name);
+  io::write_attribute(file, "/", "status", status);
+  io::write_attribute(file, "/", "reason", reason);
+  if (writer) (*writer)(file, "/result");
+  io::write_attribute(file, "/", "content_hash", io::hash_hex(io::content_hash(file, kTaskHashExclusions)));
+  file.commit();
+}
+
+// A counter on world rank 0 that group leaders advance with one atomic fetch-and-add.
+class SharedCounters {
+ public:
+  enum Slot { kNext = 0, kDone = 1, kFailed = 2, kSlots = 3 };
+  explicit SharedCounters(MPI_Comm world) {
+    const bool root = mpi::rank(world) == 0;
+    const MPI_Aint bytes = root ? static_cast<MPI_Aint>(kSlots * sizeof(long long)) : 0;
+    mpi::check(MPI_Win_allocate(bytes, sizeof(long long), MPI_INFO_NULL, world, &base_, &win_), "MPI_Win_allocate");
+    if (root) {
+      MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, win_);
+      for (int i = 0; i < kSlots; ++i) base_[i] = 0;
+      MPI_Win_unlock(0, win_);
+    }
+    mpi::check(MPI_Barrier(world), "MPI_Barrier");
+    mpi::check(MPI_Win_lock_all(0, win_), "MPI_Win_lock_all");
+  }
+  ~SharedCounters() {
+    MPI_Win_unlock_all(win_);
+    MPI_Win_free(&win_);
+  }
+  SharedCounters(const SharedCounters&) = delete;
+  SharedCounters& operator=(const SharedCounters&) = delete;
+  long long add(Slot slot, long long value) {
+    long long before = 0;
+    mpi::check(MPI_Fetch_and_op(&value, &before, MPI_LONG_LONG, 0, slot, MPI_SUM, win_), "MPI_Fetch_and_op");
+    mpi::check(MPI_Win_flush(0, win_), "MPI_Win_flush");
+    return before;
+  }
+
+ private:
+  long long* base_ = nullptr;
+  MPI_Win win_ = MPI_WIN_NULL;
+};
+
+std::string clock_text(double seconds) {
+  const long s = static_cast<long>(seconds + 0.5);
+  return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);
+}
+
+}  // namespace
+
+std::string task_path(const std::string& results_dir, const std::string& name) {
+  return (fs::path(results_dir) / (name + ".h5")).string();
+}
+
+std::string read_sweep_config(const std::string& results_dir) {
+  std::ifstream in(manifest_path(results_dir), std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: not a sweep results folder (no sweep.toml)", results_dir));
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TaskRecord inspect_task(const std::string& results_dir, const std::string& name, const std::string& config_toml) {
+  const std::string path = task_path(results_dir, name);
+  if (!fs::exists(path)) return {TaskState::missing, ""};
+  try {
+    auto file = io::File::open(path);
+    io::check_header(file, kTaskFormat, kTaskFormatVersion);
+    if (io::read_string_attribute(file, "/", "sweep_id") != sweep_id(config_toml))
+      return {TaskState::invalid, "made by a sweep of another config"};
+    if (io::read_string_attribute(file, "/", "task") != name) return {TaskState::invalid, "holds another task"};
+    const std::string stored = io::read_string_attribute(file, "/", "content_hash");
+    const std::string actual = io::hash_hex(io::content_hash(file, kTaskHashExclusions));
+    if (stored != actual) return {TaskState::invalid, fmt::format("checksum {} != stored {}", actual, stored)};
+    const std::string status = io::read_string_attribute(file, "/", "status");
+    if (status == "done") return {TaskState::done, ""};
+    if (status == "failed") return {TaskState::failed, io::read_string_attribute(file, "/", "reason")};
+    return {TaskState::invalid, "unknown status '" + status + "'"};
+  } catch (const std::exception& e) {
+    return {TaskState::invalid, e.what()};
+  }
+}
+
+SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, const std::string& config_toml,
+                      const SweepOptions& o, const TaskRunner& runner) {
+  install_interrupt_handlers();
+  SweepReport report;
+  report.total = names.size();
+  if (o.slice_count < 1 || o.slice_index < 0 || o.slice_index >= o.slice_count)
+    throw InputError(fmt::format("--slice {}/{}: needs 0 <= index < count", o.slice_index, o.slice_count));
+  std::vector<std::size_t> slice;
+  for (std::size_t t = static_cast<std::size_t>(o.slice_index); t < names.size(); t += static_cast<std::size_t>(o.slice_count))
+    slice.push_back(t);
+  report.in_slice = slice.size();
+  const std::string id = sweep_id(config_toml);
+
+  // Rank 0 looks at the folder; everybody gets the list of pending tasks.
+  std::string pending_text;
+  mpi::agree(world, [&] {
+    if (mpi::rank(world) != 0) return;
+    Stage stage("scan results");
+    prepare_results_dir(o.results_dir, config_toml);
+    std::size_t present = 0;
+    for (std::size_t t : slice) {
+      const TaskRecord r = inspect_task(o.results_dir, names[t], config_toml);
+      if (r.state != TaskState::missing) ++present;
+      if (r.state == TaskState::done) {
+        ++report.done_before;
+        continue;
+      }
+      if (r.state == TaskState::failed) spdlog::info("sweep: retrying {} (failed before: {})", names[t], r.reason);
+      if (r.state == TaskState::invalid) spdlog::warn("sweep: redoing {}: {}", names[t], r.reason);
+      pending_text += std::to_string(t) + " ";
+    }
+    if (present > 0 && !o.resume)
+      throw InputError(fmt::format("--results {}: already holds {} of this sweep's task files; add --resume to go on "
+                                   "(finished tasks are kept) or use another folder",
+                                   o.results_dir, present));
+    if (const int n = remove_stale_temporaries(o.results_dir, names, slice); n > 0)
+      spdlog::info("sweep: removed {} temporary file(s) of an earlier run that was killed", n);
+  });
+  pending_text = mpi::broadcast(world, pending_text);
+  std::vector<std::size_t> pending;
+  {
+    std::istringstream in(pending_text);
+    for (std::size_t t; in >> t;) pending.push_back(t);
+  }
+  long long skipped = static_cast<long long>(report.done_before);
+  mpi::check(MPI_Bcast(&skipped, 1, MPI_LONG_LONG, 0, world), "MPI_Bcast");
+  report.done_before = static_cast<std::size_t>(skipped);
+
+  const mpi::TaskGroups groups(world, o.ranks_per_task);
+  spdlog::info("sweep: {} tasks in this run ({} of {} in slice {}/{}, {} already done), {} group(s) of {} rank(s), "
+               "results in {}",
+               pending.size(), slice.size(), names.size(), o.slice_index, o.slice_count, report.done_before,
+               groups.n_groups(), o.ranks_per_task, o.results_dir);
+  SharedCounters counters(world);
+  const auto start = std::chrono::steady_clock::now();
+  MPI_Comm group = groups.group();
+  for (;;) {
+    // The whole group agrees to stop, then the leader takes the next task for it.
+    int stop_local = interrupt_requested() ? 1 : 0, stop = 0;
+    mpi::check(MPI_Allreduce(&stop_local, &stop, 1, MPI_INT, MPI_MAX, group), "MPI_Allreduce");
+    long long next = -1;
+    if (groups.is_leader() && !stop) next = counters.add(SharedCounters::kNext, 1);
+    mpi::check(MPI_Bcast(&next, 1, MPI_LONG_LONG, 0, group), "MPI_Bcast");
+    if (stop) {
+      report.interrupted = true;
+      break;
+    }
+    if (next < 0 || next >= static_cast<long long>(pending.size())) break;
+    const std::size_t task = pending[static_cast<std::size_t>(next)];
+    const auto t0 = std::chrono::steady_clock::now();
+    std::string failure;
+    TaskWriter writer;
+    bool interrupted = false;
+    try {
+      writer = runner(group, task);
+    } catch (const Interrupted& e) {
+      interrupted = true;  // collective: every rank of the group is here
+    } catch (const TaskFailure& e) {
+      failure = e.what();  // collective too
+    }
+    if (interrupted) {
+      report.interrupted = true;
+      break;
+    }
+    if (!groups.is_leader()) continue;
+    const std::string path = task_path(o.results_dir, names[task]);
+    if (failure.empty()) {
+      try {
+        Stage stage("write task");
+        write_task_file(path, id, names[task], "done", "", &writer);
+      } catch (const std::exception& e) {
+        failure = fmt::format("writing the result: {}", e.what());
+      }
+    }
+    if (!failure.empty()) {
+      ++report.failed;
+      spdlog::error("sweep: task {} failed: {}", names[task], failure);
+      try {
+        write_task_file(path, id, names[task], "failed", failure, nullptr);
+      } catch (const std::exception& e) {
+        spdlog::error("sweep: cannot record the failure of {} either: {}", names[task], e.what());
+      }
+      counters.add(SharedCounters::kFailed, 1);
+    } else {
+      ++report.done_now;
+    }
+    const long long finished = counters.add(SharedCounters::kDone, 1) + 1;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double per_hour = 3600.0 * static_cast<double>(finished) / std::max(elapsed, 1e-9);
+    const double left = static_cast<double>(static_cast<long long>(pending.size()) - finished);
+    spdlog::info("sweep: {} {} in {:.1f} s; {}/{} tasks finished ({} failed), {:.0f} tasks/h, ETA {}", names[task],
+                 failure.empty() ? "done" : "FAILED",
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                 finished + static_cast<long long>(report.done_before), slice.size(),
+                 counters.add(SharedCounters::kFailed, 0), per_hour, clock_text(3600.0 * left / std::max(per_hour, 1e-9)));
+  }
+  // Totals over the groups (counted on leaders only).
+  long long local[3] = {static_cast<long long>(report.done_now), static_cast<long long>(report.failed),
+                        report.interrupted ? 1 : 0};
+  if (!groups.is_leader()) local[0] = local[1] = 0;
+  long long sum[3] = {0, 0, 0}, any_interrupt = 0;
+  mpi::check(MPI_Allreduce(local, sum, 2, MPI_LONG_LONG, MPI_SUM, world), "MPI_Allreduce");
+  mpi::check(MPI_Allreduce(&local[2], &any_interrupt, 1, MPI_LONG_LONG, MPI_MAX, world), "MPI_Allreduce");
+  report.done_now = static_cast<std::size_t>(sum[0]);
+  report.failed = static_cast<std::size_t>(sum[1]);
+  report.interrupted = any_interrupt != 0;
+  return report;
+}
+
+}  // namespace clatter::jobs
