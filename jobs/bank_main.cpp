@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <optional>
 
@@ -14,6 +15,7 @@
 #include "jobs/solve_job.hpp"
 #include "jobs/pan_job.hpp"
 #include "jobs/pan_sweep.hpp"
+#include "jobs/plan.hpp"
 #include "io/content_hash.hpp"
 #include "kernels/pan/directions.hpp"
 #include "jobs/bank_tools.hpp"
@@ -70,6 +72,18 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
   pan.app->add_flag("--resume", sweep.resume, "keep the verified finished tasks in --results and do the rest");
   pan.app->add_option("--slice", sweep.slice, "K/N: only tasks t with t % N == K, no merge (Slurm job arrays)");
   pan.app->add_flag("--keep-results", sweep.keep_results, "keep the task files after a complete merge");
+
+  Job plan{nullptr, {}, "bank.h5"};
+  add_job(plan, "plan", "predict a PAN sweep's cost (tasks, cells x steps, memory per rank, wall time from a "
+                        "calibration solve run here) and write Slurm batch scripts", "the bank the job will write", false);
+  jobs::PlanOptions plan_opt;
+  plan.app->add_option("--ranks", plan_opt.ranks, "MPI ranks of the job")->capture_default_str();
+  plan.app->add_option("--ranks-per-task", plan_opt.ranks_per_task, "ranks per task")->capture_default_str();
+  plan.app->add_option("--cores-per-node", plan_opt.cores_per_node, "cores per node (default: this machine's)");
+  plan.app->add_option("--rate", plan_opt.rate, "cell-updates/s per rank instead of measuring (e.g. from a stage table)");
+  plan.app->add_option("--results", plan_opt.results, "results folder of the job (default: OUT.tasks)");
+  plan.app->add_option("--sbatch", plan_opt.sbatch, "write a ready sbatch script here");
+  plan.app->add_option("--array", plan_opt.array, "with --sbatch: a job array of N elements and a merge job (FILE.merge)");
 
   std::string merge_results, merge_out = "bank.h5";
   auto* merge = app.add_subcommand("merge", "merge a sweep's results folder into a PAN bank (after job array slices)");
@@ -157,6 +171,21 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
     sweep.progress_interval_s = progress_interval_s;
     sweep.command = jobs::command_line(argc, argv);
     code = jobs::run_pan_sweep(world, *config, sweep);
+  }
+
+  if (plan.app->parsed()) {
+    auto config = config_for(jobs::pan_schema(), plan.config);
+    if (!config) return kExitOk;
+    namespace fs = std::filesystem;
+    plan_opt.config_path = plan.config.path.empty() ? "" : fs::absolute(plan.config.path).string();
+    plan_opt.out = fs::absolute(plan.out).string();
+    if (!plan_opt.results.empty()) plan_opt.results = fs::absolute(plan_opt.results).string();
+    plan_opt.binary = fs::canonical("/proc/self/exe").string();
+    std::string text;
+    mpi::agree(world, [&] {
+      if (session.is_root()) text = jobs::run_plan(*config, plan_opt);
+    });
+    if (session.is_root()) std::fputs(text.c_str(), stdout);
   }
 
   if (merge->parsed()) {

@@ -194,6 +194,7 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
                   k.solid, k.pml, static_cast<double>(k.bytes) / 1048576.0);
     double bytes = static_cast<double>(k.bytes), total = 0;
     mpi::check(MPI_Allreduce(&bytes, &total, 1, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
+    result.bytes = total;
     const fdtd::Box in = grid.interior();
     spdlog::info("solve: memory {:.1f} MiB: {:.1f} bytes per cell, {:.1f} per cell outside the PML", total / 1048576.0,
                  total / static_cast<double>(cells), total / static_cast<double>(in.cells()));

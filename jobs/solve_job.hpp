@@ -34,6 +34,7 @@ struct SolveResult {
   std::vector<std::vector<float>> series;  // per field: [listener][sample], rank 0 only
   double cell_updates_per_s = 0;
   long long cells = 0;  // per step, all ranks
+  double bytes = 0;     // solver storage, all ranks
 };
 
 SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_interval_s);

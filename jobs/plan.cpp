@@ -1,0 +1,177 @@
+#include "jobs/plan.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "core/errors.hpp"
+#include "jobs/pan_job.hpp"
+
+namespace fs = std::filesystem;
+
+namespace clatter::jobs {
+namespace {
+
+std::string clock_text(double seconds) {
+  const long s = static_cast<long>(std::ceil(seconds));
+  return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);
+}
+
+struct Calibration {
+  double rate = 0;            // cell-updates/s per rank, wall time of a whole solve (setup included)
+  double bytes_per_cell = 0;
+  std::string how;
+};
+
+// A small solve with the sweep's own physics and cell size: the body's bounding sphere plus a few
+// cells, so the per-cell costs (bulk, cut cells, layer) resemble a task's.
+Calibration calibrate(const io::Config& config, double given_rate) {
+  io::Config small = config;
+  const double dx = config.real("grid.dx_m"), a = config.real("proxies.a_m");
+  small.set(fmt::format("fit.radii_m=[{:.17g}, {:.17g}]", a + 2.5 * dx, a + 3 * dx));
+  small.set("fit.terms=1");
+  small.set(fmt::format("time.tail_s={:.17g}", 64 * config.real("time.dt_s")));
+  small.set("solve.fields=[1]");
+  const PanSpec spec = make_pan_spec(small);
+  Calibration c;
+  const auto t0 = std::chrono::steady_clock::now();
+  const SolveResult r = run_solve(MPI_COMM_SELF, spec.solve, 0);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double updates = static_cast<double>(r.cells) * (spec.solve.n_samples - 1);
+  c.bytes_per_cell = r.bytes / static_cast<double>(r.cells);
+  c.rate = given_rate > 0 ? given_rate : updates / wall;
+  c.how = given_rate > 0 ? "given with --rate"
+                         : fmt::format("measured here: {:.3g} M cells x {} steps in {:.2f} s on 1 rank, setup included",
+                                       static_cast<double>(r.cells) / 1e6, spec.solve.n_samples - 1, wall);
+  return c;
+}
+
+std::string sweep_command(const PlanOptions& o, const std::string& results, const std::string& extra) {
+  return fmt::format("{} pan --config {} --out {} --results {} --ranks-per-task {} --resume --progress-interval 60{}",
+                     o.binary, o.config_path, o.out, results, o.ranks_per_task, extra);
+}
+
+// The batch shell gets SIGTERM 120 s before the limit (--signal=B:TERM@120) and passes it on to
+// srun, which signals the ranks; they stop cleanly and exit 3. The job then requeues itself, and
+// --resume makes every start skip the verified finished tasks.
+std::string run_block(const std::string& command) {
+  return fmt::format(R"(export OMP_NUM_THREADS=1
+srun --mpi=pmix {} &
+step=$!
+trap 'echo "clatter: SIGTERM, stopping the sweep cleanly"; kill -TERM "$step" 2>/dev/null' TERM
+rc=0
+wait "$step" || rc=$?
+while kill -0 "$step" 2>/dev/null; do wait "$step" || rc=$?; done  # a trapped signal ends the first wait early
+)", command);
+}
+
+void write_script(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw InputError(fmt::format("--sbatch {}: cannot write the file", path));
+  fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec, fs::perm_options::add);
+}
+
+}  // namespace
+
+std::string run_plan(const io::Config& config, const PlanOptions& o) {
+  const PanSpec spec = make_pan_spec(config);
+  if (o.ranks < 1 || o.ranks_per_task < 1 || o.ranks % o.ranks_per_task != 0)
+    throw InputError(fmt::format("--ranks {} --ranks-per-task {}: the ranks per task must divide the ranks", o.ranks,
+                                 o.ranks_per_task));
+  const auto tasks = pan_tasks(spec);
+  const auto& g = spec.solve.problem.grid;
+  const double cells = static_cast<double>(g.n[0]) * g.n[1] * g.n[2];
+  const int steps = spec.solve.n_samples - 1;
+  const double updates = cells * steps;
+  const Calibration cal = calibrate(config, o.rate);
+  const int groups = o.ranks / o.ranks_per_task;
+  const std::size_t waves = (tasks.size() + static_cast<std::size_t>(groups) - 1) / static_cast<std::size_t>(groups);
+  // Tasks are equal in size: the sweep takes `waves` task times; ranks of a group split the cells.
+  const double task_s = updates / (cal.rate * o.ranks_per_task);
+  const double wall_s = static_cast<double>(waves) * task_s;
+  const double limit_s = 1.5 * wall_s + 600;  // margin for slower nodes and queue start-up, plus the 120 s signal
+  const double listener_bytes = static_cast<double>(spec.solve.listeners_m.size()) * 8 * spec.solve.n_samples * 4;
+  const double rank_bytes = cal.bytes_per_cell * cells / o.ranks_per_task + listener_bytes;
+  const int cores = o.cores_per_node > 0 ? o.cores_per_node : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int nodes = (o.ranks + cores - 1) / cores;
+  const std::string results = o.results.empty() ? o.out + ".tasks" : o.results;
+
+  std::string out = fmt::format("plan: {}: {} proxies x {} fields = {} tasks\n", o.config_path.empty() ? "defaults" : o.config_path,
+                                spec.proxies_bc_m.size(), spec.solve.fields.size(), tasks.size());
+  out += fmt::format("  per task:    {} grid {}x{}x{} = {:.3g} M cells, {} steps: {:.3g} cell-updates\n",
+                     g.octant ? "octant" : "full", g.n[0], g.n[1], g.n[2], cells / 1e6, steps, updates);
+  out += fmt::format("  memory:      {:.1f} bytes/cell -> {:.0f} MiB per rank with {} rank(s) per task (+ {:.0f} MiB of "
+                     "listener records on each group's rank 0, counted)\n",
+                     cal.bytes_per_cell, rank_bytes / 1048576.0, o.ranks_per_task, listener_bytes / 1048576.0);
+  out += fmt::format("  calibration: {:.3g} cell-updates/s per rank ({})\n", cal.rate, cal.how);
+  out += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}; {} waves of {} per task\n",
+                     o.ranks, nodes, cores, groups, o.ranks_per_task, waves, clock_text(task_s));
+  out += fmt::format("  predicted:   {} wall; time limit with 1.5x margin + 10 min: {}\n", clock_text(wall_s),
+                     clock_text(limit_s));
+  out += "  tasks:\n";
+  for (const auto& t : tasks)
+    out += fmt::format("    {}  (B, C) = ({:.4g}, {:.4g}) m  field {}  {:.3g} cell-updates\n", t.name,
+                       spec.proxies_bc_m[t.proxy][0], spec.proxies_bc_m[t.proxy][1], t.field, updates);
+
+  if (!o.sbatch.empty()) {
+    if (o.config_path.empty())
+      throw InputError("--sbatch needs --config FILE: the batch job reads the same config file");
+    const std::string header = fmt::format(
+        "#!/bin/bash\n# Written by clatter-bank plan for {} ({} tasks; predicted {} on {} ranks).\n", o.config_path,
+        tasks.size(), clock_text(wall_s), o.ranks);
+    if (o.array <= 0) {
+      write_script(o.sbatch, header + fmt::format(R"(#SBATCH --job-name=clatter-pan
+#SBATCH --nodes={}
+#SBATCH --ntasks={}
+#SBATCH --time={}
+#SBATCH --signal=B:TERM@120
+#SBATCH --requeue
+#SBATCH --open-mode=append
+#SBATCH --output=clatter-pan-%j.out
+set -u
+{}if [ "$rc" -eq 3 ]; then scontrol requeue "$SLURM_JOB_ID"; fi  # interrupted: go on where it stopped
+exit "$rc"
+)", nodes, o.ranks, clock_text(limit_s), run_block(sweep_command(o, results, ""))));
+      out += fmt::format("  wrote {}: submit with `sbatch {}`\n", o.sbatch, o.sbatch);
+    } else {
+      const std::size_t per_element = (tasks.size() + static_cast<std::size_t>(o.array) - 1) / static_cast<std::size_t>(o.array);
+      const std::size_t element_waves = (per_element + static_cast<std::size_t>(groups) - 1) / static_cast<std::size_t>(groups);
+      const double element_limit_s = 1.5 * static_cast<double>(element_waves) * task_s + 600;
+      write_script(o.sbatch, header + fmt::format(R"(#SBATCH --job-name=clatter-pan-array
+#SBATCH --array=0-{}
+#SBATCH --nodes={}
+#SBATCH --ntasks={}
+#SBATCH --time={}
+#SBATCH --signal=B:TERM@120
+#SBATCH --requeue
+#SBATCH --open-mode=append
+#SBATCH --output=clatter-pan-%A_%a.out
+set -u
+{}if [ "$rc" -eq 3 ]; then scontrol requeue "${{SLURM_ARRAY_JOB_ID}}_${{SLURM_ARRAY_TASK_ID}}"; fi
+exit "$rc"
+)", o.array - 1, nodes, o.ranks, clock_text(element_limit_s),
+          run_block(sweep_command(o, results, " --slice ${SLURM_ARRAY_TASK_ID}/${SLURM_ARRAY_TASK_COUNT}"))));
+      write_script(o.sbatch + ".merge", fmt::format(R"(#!/bin/bash
+# Merges the slices of {} into {} once every array element succeeded (--dependency=afterok).
+#SBATCH --job-name=clatter-pan-merge
+#SBATCH --ntasks=1
+#SBATCH --time=0:30:00
+#SBATCH --output=clatter-pan-merge-%j.out
+set -u
+srun --mpi=pmix {} merge --results {} --out {}
+)", o.sbatch, o.out, o.binary, results, o.out));
+      out += fmt::format("  wrote {} ({} elements of ~{} tasks, limit {}) and {}.merge; submit with\n"
+                         "    jid=$(sbatch --parsable {}) && sbatch --dependency=afterok:${{jid%%;*}} {}.merge\n",
+                         o.sbatch, o.array, per_element, clock_text(element_limit_s), o.sbatch, o.sbatch, o.sbatch);
+    }
+  }
+  return out;
+}
+
+}  // namespace clatter::jobs

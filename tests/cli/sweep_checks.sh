@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# The sweep engine's acceptance (docs/cluster.md, "Sweeps"): the bank's content hash is identical
+# for (a) 1 rank, (b) 2 ranks, (c) 2 ranks as one group of 2, (d) 2 ranks stopped by SIGTERM and
+# resumed; the interrupted run leaves only complete task files; a task that fails (an I/O error:
+# its result path is taken by a folder) is recorded, the sweep goes on, the exit code is 4, `info`
+# lists it, and --resume retries it into the same bank.
+# Usage: sweep_checks.sh CLATTER_BANK CONFIG SCRATCH MPIEXEC...
+set -uo pipefail
+bank=$1 config=$2 scratch=$3
+shift 3
+mpiexec=("$@")
+rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch" || exit 1
+fail() { echo "FAIL: $*"; exit 1; }
+# Small enough for CI, slow enough (about a second per task) to be interrupted mid-sweep.
+sets=(--set 'proxies.list_m=[[0.5, 0.5], [0.35, 0.2]]' --set 'solve.fields=[1, 4, 6]' --set grid.dx_m=0.02
+      --set time.dt_s=3.3e-5)
+run() {  # run NPROCS ARGS...: the sweep on NPROCS ranks
+  local n=$1
+  shift
+  "${mpiexec[@]}" -n "$n" "$bank" pan -c "$config" "${sets[@]}" --progress-interval 0 "$@"
+}
+sum() { "$bank" checksum "$1" | cut -d' ' -f1; }
+
+run 1 -o a.h5 > a.log 2>&1 || fail "1 rank: exit $? ($(tail -3 a.log))"
+run 2 -o b.h5 > b.log 2>&1 || fail "2 ranks: exit $?"
+run 2 -o c.h5 --ranks-per-task 2 > c.log 2>&1 || fail "2 ranks per task: exit $?"
+[[ -e a.h5.tasks ]] && fail "a complete sweep left its results folder"
+echo "(a) 1 rank:                $(sum a.h5)"
+echo "(b) 2 ranks:               $(sum b.h5)"
+echo "(c) 2 ranks per task:      $(sum c.h5)"
+
+# (d) SIGTERM to the ranks once the first task has landed.
+run 2 -o d.h5 > d1.log 2>&1 &
+launcher=$!
+for _ in $(seq 600); do
+  compgen -G 'd.h5.tasks/p*.h5' > /dev/null && break
+  sleep 0.05
+done
+pkill -TERM -P "$launcher" -x clatter-bank || pkill -TERM -x clatter-bank
+wait "$launcher"
+code=$?
+[[ $code -eq 3 ]] || fail "interrupted sweep: exit $code, expected 3 ($(tail -5 d1.log))"
+grep -q "resume with:" d1.log || fail "no resume hint in the log"
+[[ -e d.h5 ]] && fail "an interrupted sweep wrote the bank"
+stray=$(find . -name '.*tmp*')
+[[ -z "$stray" ]] || fail "stray temporaries: $stray"
+kept=$(find d.h5.tasks -name 'p*.h5' | wc -l)
+for f in d.h5.tasks/p*.h5; do "$bank" checksum "$f" > /dev/null || fail "$f is not a complete HDF5 file"; done
+echo "(d) interrupted after $kept of 6 tasks (exit 3); no temporaries"
+run 2 -o d.h5 > d2.log 2>&1 && fail "a second run without --resume must refuse the results folder"
+grep -q "add --resume" d2.log || fail "no --resume hint"
+run 2 -o d.h5 --resume > d3.log 2>&1 || fail "resume: exit $?"
+grep -q "$kept already done" d3.log || fail "resume did not skip the $kept finished tasks"
+echo "(d) resumed:               $(sum d.h5)"
+[[ -e d.h5.tasks ]] && fail "the resumed sweep left its results folder"
+
+# A failing task: its result path is a folder.
+mkdir -p e.h5.tasks/p001-f4.h5
+run 2 -o e.h5 --resume > e1.log 2>&1
+code=$?
+[[ $code -eq 4 ]] || fail "a failed task: exit $code, expected 4"
+"$bank" info e.h5 > e-info.txt || fail "info of a bank with a failed task"
+grep -q "5 of 6 tasks" e-info.txt && grep -q "failed: *p001-f4" e-info.txt || fail "info does not list the failed task: $(cat e-info.txt)"
+echo "failed task: exit 4, info lists it"
+rmdir e.h5.tasks/p001-f4.h5
+run 2 -o e.h5 --resume > e2.log 2>&1 || fail "retry of the failed task: exit $?"
+echo "(e) failed, then retried:  $(sum e.h5)"
+
+ref=$(sum a.h5)
+for f in b.h5 c.h5 d.h5 e.h5; do [[ $(sum $f) == "$ref" ]] || fail "$f differs from a.h5"; done
+echo "all 5 banks have the same content hash $ref"
