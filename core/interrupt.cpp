@@ -13,8 +13,10 @@ void install_interrupt_handlers() {
   struct sigaction action {};
   action.sa_handler = on_signal;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND;  // the second signal takes the default action: terminate
+  // Slurm may send SIGTERM more than once (time limit, scancel); its SIGKILL follows after KillWait
+  // anyway. A second Ctrl-C, though, means "now".
   sigaction(SIGTERM, &action, nullptr);
+  action.sa_flags = SA_RESETHAND;
   sigaction(SIGINT, &action, nullptr);
 }
 

@@ -56,17 +56,13 @@ std::string sweep_command(const PlanOptions& o, const std::string& results, cons
                      o.binary, o.config_path, o.out, results, o.ranks_per_task, extra);
 }
 
-// The batch shell gets SIGTERM 120 s before the limit (--signal=B:TERM@120) and passes it on to
-// srun, which signals the ranks; they stop cleanly and exit 3. The job then requeues itself, and
-// --resume makes every start skip the verified finished tasks.
+// Slurm signals the ranks themselves 120 s before the limit (--signal=TERM@120, no B: a signal to
+// srun would make it end the step with SIGKILL after KillWait); they stop cleanly and exit 3. The
+// job then requeues itself, and --resume makes every start skip the verified finished tasks.
 std::string run_block(const std::string& command) {
   return fmt::format(R"(export OMP_NUM_THREADS=1
-srun --mpi=pmix {} &
-step=$!
-trap 'echo "clatter: SIGTERM, stopping the sweep cleanly"; kill -TERM "$step" 2>/dev/null' TERM
 rc=0
-wait "$step" || rc=$?
-while kill -0 "$step" 2>/dev/null; do wait "$step" || rc=$?; done  # a trapped signal ends the first wait early
+srun --mpi=pmix {} || rc=$?
 )", command);
 }
 
@@ -120,24 +116,30 @@ std::string run_plan(const io::Config& config, const PlanOptions& o) {
                        spec.proxies_bc_m[t.proxy][0], spec.proxies_bc_m[t.proxy][1], t.field, updates);
 
   if (!o.sbatch.empty()) {
-    if (o.config_path.empty())
-      throw InputError("--sbatch needs --config FILE: the batch job reads the same config file");
+    // The job reads exactly the planned config (file and --set overrides), frozen next to the script.
+    PlanOptions job = o;
+    job.config_path = fs::absolute(o.sbatch + ".toml").string();
+    {
+      std::ofstream toml(job.config_path);
+      toml << config.to_toml();
+      if (!toml) throw InputError(fmt::format("--sbatch {}: cannot write {}", o.sbatch, job.config_path));
+    }
     const std::string header = fmt::format(
-        "#!/bin/bash\n# Written by clatter-bank plan for {} ({} tasks; predicted {} on {} ranks).\n", o.config_path,
+        "#!/bin/bash\n# Written by clatter-bank plan for {} ({} tasks; predicted {} on {} ranks).\n", job.config_path,
         tasks.size(), clock_text(wall_s), o.ranks);
     if (o.array <= 0) {
       write_script(o.sbatch, header + fmt::format(R"(#SBATCH --job-name=clatter-pan
 #SBATCH --nodes={}
 #SBATCH --ntasks={}
 #SBATCH --time={}
-#SBATCH --signal=B:TERM@120
+#SBATCH --signal=TERM@120
 #SBATCH --requeue
 #SBATCH --open-mode=append
 #SBATCH --output=clatter-pan-%j.out
 set -u
-{}if [ "$rc" -eq 3 ]; then scontrol requeue "$SLURM_JOB_ID"; fi  # interrupted: go on where it stopped
+{}if [ "$rc" -eq 3 ]; then echo "clatter: interrupted (exit 3), requeueing"; scontrol requeue "$SLURM_JOB_ID"; fi
 exit "$rc"
-)", nodes, o.ranks, clock_text(limit_s), run_block(sweep_command(o, results, ""))));
+)", nodes, o.ranks, clock_text(limit_s), run_block(sweep_command(job, results, ""))));
       out += fmt::format("  wrote {}: submit with `sbatch {}`\n", o.sbatch, o.sbatch);
     } else {
       const std::size_t per_element = (tasks.size() + static_cast<std::size_t>(o.array) - 1) / static_cast<std::size_t>(o.array);
@@ -148,7 +150,7 @@ exit "$rc"
 #SBATCH --nodes={}
 #SBATCH --ntasks={}
 #SBATCH --time={}
-#SBATCH --signal=B:TERM@120
+#SBATCH --signal=TERM@120
 #SBATCH --requeue
 #SBATCH --open-mode=append
 #SBATCH --output=clatter-pan-%A_%a.out
@@ -156,7 +158,7 @@ set -u
 {}if [ "$rc" -eq 3 ]; then scontrol requeue "${{SLURM_ARRAY_JOB_ID}}_${{SLURM_ARRAY_TASK_ID}}"; fi
 exit "$rc"
 )", o.array - 1, nodes, o.ranks, clock_text(element_limit_s),
-          run_block(sweep_command(o, results, " --slice ${SLURM_ARRAY_TASK_ID}/${SLURM_ARRAY_TASK_COUNT}"))));
+          run_block(sweep_command(job, results, " --slice ${SLURM_ARRAY_TASK_ID}/${SLURM_ARRAY_TASK_COUNT}"))));
       write_script(o.sbatch + ".merge", fmt::format(R"(#!/bin/bash
 # Merges the slices of {} into {} once every array element succeeded (--dependency=afterok).
 #SBATCH --job-name=clatter-pan-merge

@@ -216,3 +216,22 @@ TEST(FdtdPml, MonopoleReflectionBelowMinus40dB) {
     EXPECT_LT(db, -40.0) << "listener " << l;
   }
 }
+
+TEST(FdtdHealth, BlowUpBeyondTheCflLimitIsATaskFailureOnEveryRank) {
+  // The config refuses dt above the CFL limit dx / (c sqrt 3); past the checks, 1.2x that limit
+  // makes the scheme's highest mode grow by a fixed factor per step, so the listeners overflow to
+  // Inf/NaN within a few hundred steps. Every rank must raise the same TaskFailure (sweeps record it
+  // and go on); a rank that ran on would hang its partner in the next halo exchange.
+  auto config = sphere_config(5, "[1]");
+  config.set("time.duration_s=0.02");
+  auto spec = jobs::make_solve_spec(config);
+  spec.problem.dt_s = 1.2 * spec.problem.grid.dx_m / (spec.problem.c_m_s * std::sqrt(3.0));
+  spec.n_samples = 4000;
+  try {
+    jobs::run_solve(MPI_COMM_WORLD, spec, 0.0);
+    ADD_FAILURE() << "an unstable solve ran to the end";
+  } catch (const TaskFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+    if (mpi::rank(MPI_COMM_WORLD) == 0) std::printf("%s\n", e.what());
+  }
+}

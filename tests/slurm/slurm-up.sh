@@ -61,7 +61,8 @@ munged --force \
   --seed-file="$DIR/munged.seed" || fail "munged did not start"
 
 # ---- slurm.conf -----------------------------------------------------------
-NCPU=$(nproc)
+# Not nproc: it honours OMP_NUM_THREADS, which tests set to 1.
+NCPU=$(getconf _NPROCESSORS_ONLN)
 # Leave headroom below what slurmd detects, else the node is drained
 # (Low RealMemory) when the figure fluctuates.
 MEM=$(slurmd -C | sed -n 's/.*RealMemory=\([0-9]*\).*/\1/p')
@@ -100,6 +101,8 @@ MpiDefault=pmix
 MailProg=/bin/true
 SelectType=select/cons_tres
 SelectTypeParameters=CR_Core
+# A job that can never run is refused at submission instead of pending forever.
+EnforcePartLimits=ALL
 ReturnToService=2
 # Fast turnaround for tests: schedule every second, no batch-delay, keep
 # finished jobs visible to scontrol for 30 s, short kill grace.
