@@ -52,7 +52,7 @@ Calibration calibrate(const io::Config& config, double given_rate) {
 }
 
 std::string sweep_command(const PlanOptions& o, const std::string& results, const std::string& extra) {
-  return fmt::format("{} pan --config {} --out {} --results {} --ranks-per-task {} --resume --progress-interval 60{}",
+  return fmt::format("{} pan --config {} --out {} --results {} --ranks-per-task {} --resume --progress-interval 60 --log-view{}",
                      o.binary, o.config_path, o.out, results, o.ranks_per_task, extra);
 }
 

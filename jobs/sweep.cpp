@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -164,6 +165,9 @@ SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, con
     slice.push_back(t);
   report.in_slice = slice.size();
   const std::string id = sweep_id(config_toml);
+  std::optional<mpi::TaskGroups> groups_storage;  // first: a bad --ranks-per-task creates nothing
+  mpi::agree(world, [&] { groups_storage.emplace(world, o.ranks_per_task); });
+  const mpi::TaskGroups& groups = *groups_storage;
 
   // Rank 0 looks at the folder; everybody gets the list of pending tasks.
   std::string pending_text;
@@ -200,7 +204,6 @@ SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, con
   mpi::check(MPI_Bcast(&skipped, 1, MPI_LONG_LONG, 0, world), "MPI_Bcast");
   report.done_before = static_cast<std::size_t>(skipped);
 
-  const mpi::TaskGroups groups(world, o.ranks_per_task);
   spdlog::info("sweep: {} tasks in this run ({} of {} in slice {}/{}, {} already done), {} group(s) of {} rank(s), "
                "results in {}",
                pending.size(), slice.size(), names.size(), o.slice_index, o.slice_count, report.done_before,
@@ -231,6 +234,8 @@ SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, con
       interrupted = true;  // collective: every rank of the group is here
     } catch (const TaskFailure& e) {
       failure = e.what();  // collective too
+    } catch (const InputError& e) {
+      failure = e.what();  // raised alike on every rank by contract (core/errors.hpp)
     }
     if (interrupted) {
       report.interrupted = true;

@@ -21,6 +21,17 @@ run() {  # run NPROCS ARGS...: the sweep on NPROCS ranks
 }
 sum() { "$bank" checksum "$1" | cut -d' ' -f1; }
 
+# Bad sweep options: exit 2, one line, nothing created.
+for bad in "--ranks-per-task 3" "--slice 2/2" "--slice x"; do
+  # shellcheck disable=SC2086
+  run 2 -o bad.h5 $bad > bad.log 2>&1
+  code=$?
+  [[ $code -eq 2 ]] || fail "$bad: exit $code, expected 2"
+  [[ -z $(ls -A) || $(ls -A) == "bad.log" ]] || fail "$bad left files: $(ls -A)"
+  echo "$bad: exit 2: $(grep error bad.log | head -1)"
+done
+rm -f bad.log
+
 run 1 -o a.h5 > a.log 2>&1 || fail "1 rank: exit $? ($(tail -3 a.log))"
 run 2 -o b.h5 > b.log 2>&1 || fail "2 ranks: exit $?"
 run 2 -o c.h5 --ranks-per-task 2 > c.log 2>&1 || fail "2 ranks per task: exit $?"
