@@ -32,4 +32,11 @@ struct Series {
 Series evaluate(const ProxyField& f, const std::array<double, 3>& x_m, double beta = 1.0, double output_rate_hz = 0.0,
                 Interpolation interpolation = Interpolation::quadratic);
 
+// sum_i weight_i p_i^(beta h)(x, t) over several fields of one proxy (null entries are skipped),
+// added in coefficient space: one inverse transform whatever the number of fields. The fields must
+// come from one proxy of one bank (same length, rate, time origin, directions and delays).
+Series evaluate_sum(const std::array<const ProxyField*, 6>& fields, const std::array<double, 6>& weights,
+                    const std::array<double, 3>& x_m, double beta = 1.0, double output_rate_hz = 0.0,
+                    Interpolation interpolation = Interpolation::quadratic);
+
 }  // namespace clatter::kernels::pan

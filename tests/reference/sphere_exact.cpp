@@ -53,4 +53,27 @@ double TranslatingSphere::pressure(double r, double cos_theta, double t) const {
   return -cos_theta * (f / (r * r) + df / (c_m_s * r));
 }
 
+double translating_sphere_pressure(double a, double c, double rho, double r, double cos_theta, double t,
+                                   double (*accel)(double, const void*), const void* ctx, double begin, double end,
+                                   int pieces) {
+  const double w = c / a;
+  const double tau = t - (r - a) / c;
+  double f = 0, df = 0;
+  const double width = (end - begin) / pieces;
+  for (int piece = 0; piece < pieces; ++piece) {
+    const double lo = begin + piece * width, hi = std::min(begin + (piece + 1) * width, tau);
+    if (hi <= lo) continue;
+    f += gauss(lo, hi, [&](double s) {
+      const double u = tau - s;
+      return accel(s, ctx) * std::exp(-w * u) * std::sin(w * u) / w;
+    });
+    df += gauss(lo, hi, [&](double s) {
+      const double u = tau - s;
+      return accel(s, ctx) * std::exp(-w * u) * (std::cos(w * u) - std::sin(w * u));
+    });
+  }
+  const double scale = -rho * c * c * a;
+  return -cos_theta * (scale * f / (r * r) + scale * df / (c * r));
+}
+
 }  // namespace clatter::reference

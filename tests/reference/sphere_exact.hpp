@@ -11,4 +11,10 @@ struct TranslatingSphere {
   double pressure(double r_m, double cos_theta, double t_s) const;
 };
 
+// The same for any acceleration history A(t) that is smooth on each of `pieces` equal parts of
+// [begin_s, end_s] and zero outside (e.g. a half-sine contact pulse).
+double translating_sphere_pressure(double radius_m, double c_m_s, double rho_kg_m3, double r_m, double cos_theta,
+                                   double t_s, double (*acceleration)(double t_s, const void* context),
+                                   const void* context, double begin_s, double end_s, int pieces);
+
 }  // namespace clatter::reference
