@@ -30,6 +30,7 @@ build: deps $(BUILD)/CMakeCache.txt
 demo: build
 	mpiexec -n 2 $(BUILD)/bin/clatter-bank pan -c configs/pan-demo.toml -o out/demo/bank.h5 --log-view
 	$(BUILD)/bin/clatter-bank info out/demo/bank.h5
+	$(BUILD)/bin/clatter-synth -i scenes/demo.json -b out/demo/bank.h5 -o out/demo/debris.wav
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300

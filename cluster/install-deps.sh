@@ -13,7 +13,7 @@ packages=(
   libhdf5-openmpi-dev
   libeigen3-dev libgsl-dev libcgal-dev libtet1.5-dev
   # small libraries the code uses
-  libtoml11-dev libcli11-dev libspdlog-dev libfmt-dev
+  libtoml11-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libsndfile1-dev
   # tests and benchmarks
   libgtest-dev libbenchmark-dev
   # analysis scripts (run with /usr/bin/python3)

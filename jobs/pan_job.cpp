@@ -236,17 +236,5 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   return out;
 }
 
-pan::ProxyField proxy_field(const io::PanBankHeader& h, const io::PanProxy& proxy, int field) {
-  pan::ProxyField f;
-  f.field = field;
-  f.terms = h.terms;
-  f.length = h.length;
-  f.dt_s = h.dt_s;
-  f.t_first_s = h.t_first_s;
-  f.c_m_s = h.c_m_s;
-  for (const auto& d : proxy.fields.at(static_cast<std::size_t>(field - 1))) f.directions.push_back({d.index, d.value});
-  f.delay_steps.assign(proxy.delay_steps.begin(), proxy.delay_steps.end());
-  return f;
-}
 
 }  // namespace clatter::jobs

@@ -13,6 +13,7 @@
 #include "jobs/solve_job.hpp"
 #include "jobs/sweep.hpp"
 #include "kernels/pan/field.hpp"
+#include "synth/sources.hpp"
 
 namespace clatter::jobs {
 
@@ -61,7 +62,7 @@ TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task
 // The bank from a results folder: every task found done, the others listed as failed or missing.
 io::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml);
 
-// A fitted field as the evaluation library wants it.
-kernels::pan::ProxyField proxy_field(const io::PanBankHeader& header, const io::PanProxy& proxy, int field);
+// A fitted field as the evaluation library wants it (the synthesizer's conversion).
+using synth::proxy_field;
 
 }  // namespace clatter::jobs

@@ -1,0 +1,247 @@
+#include "io/scene.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace clatter::io {
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void bad(const std::string& where, const std::string& what) { throw InputError(where + ": " + what); }
+
+const json& need(const json& j, const std::string& key, const std::string& where) {
+  if (!j.is_object() || !j.contains(key)) bad(where, "missing key '" + key + "'");
+  return j.at(key);
+}
+
+double number(const json& j, const std::string& where) {
+  if (!j.is_number()) bad(where, "expected a number, found " + j.dump());
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) bad(where, "not finite");
+  return v;
+}
+
+template <std::size_t N>
+std::array<double, N> vec(const json& j, const std::string& where) {
+  if (!j.is_array() || j.size() != N) bad(where, fmt::format("expected an array of {} numbers, found {}", N, j.dump()));
+  std::array<double, N> v{};
+  for (std::size_t i = 0; i < N; ++i) v[i] = number(j[i], fmt::format("{}[{}]", where, i));
+  return v;
+}
+
+Pose pose(const json& j, const std::string& where) {
+  Pose p;
+  p.position_m = vec<3>(need(j, "position_m", where), where + ".position_m");
+  p.orientation_wxyz = vec<4>(need(j, "orientation_wxyz", where), where + ".orientation_wxyz");
+  const auto& q = p.orientation_wxyz;
+  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (std::abs(n - 1) > 1e-6) bad(where + ".orientation_wxyz", fmt::format("{} has norm {}: must be a unit quaternion", json(q).dump(), n));
+  return p;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the scene file");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Everything but the events (shared by both input formats).
+Scene read_setting(const json& root, const std::string& path) {
+  Scene scene;
+  scene.path = path;
+  if (need(root, "format", path) != "clatter-scene")
+    bad(path + ": format", fmt::format("{}, expected \"clatter-scene\"", root["format"].dump()));
+  if (need(root, "format_version", path) != 1)
+    bad(path + ": format_version", root["format_version"].dump() + ", this build reads version 1");
+  for (const auto& [name, m] : need(root, "materials", path).items()) {
+    const std::string w = path + ": materials." + name;
+    SceneMaterial mat{number(need(m, "youngs_modulus_pa", w), w + ".youngs_modulus_pa"),
+                      number(need(m, "poisson_ratio", w), w + ".poisson_ratio")};
+    if (!(mat.youngs_modulus_pa > 0)) bad(w + ".youngs_modulus_pa", fmt::format("{}: must be > 0", mat.youngs_modulus_pa));
+    if (!(mat.poisson_ratio >= 0 && mat.poisson_ratio < 0.5)) bad(w + ".poisson_ratio", fmt::format("{}: must be in [0, 0.5)", mat.poisson_ratio));
+    scene.materials[name] = mat;
+  }
+  const json& g = need(root, "ground_material", path);
+  if (!g.is_string() || !scene.materials.count(g.get<std::string>())) bad(path + ": ground_material", g.dump() + " is not in materials");
+  scene.ground_material = g.get<std::string>();
+  std::set<int> ids;
+  const json& objects = need(root, "objects", path);
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const std::string w = fmt::format("{}: objects[{}]", path, i);
+    const json& o = objects[i];
+    SceneObject obj;
+    const json& id = need(o, "id", w);
+    if (!id.is_number_integer() || id.get<int>() < 1) bad(w + ".id", id.dump() + ": must be an integer >= 1 (0 is the ground)");
+    obj.id = id.get<int>();
+    if (!ids.insert(obj.id).second) bad(w + ".id", fmt::format("{} is used twice", obj.id));
+    obj.mass_kg = number(need(o, "mass_kg", w), w + ".mass_kg");
+    if (!(obj.mass_kg > 0)) bad(w + ".mass_kg", fmt::format("{}: must be > 0", obj.mass_kg));
+    obj.volume_m3 = number(need(o, "volume_m3", w), w + ".volume_m3");
+    if (!(obj.volume_m3 > 0)) bad(w + ".volume_m3", fmt::format("{}: must be > 0", obj.volume_m3));
+    const json& inertia = need(o, "inertia_kg_m2", w);
+    if (!inertia.is_array() || inertia.size() != 3) bad(w + ".inertia_kg_m2", "expected a 3x3 array");
+    for (std::size_t r = 0; r < 3; ++r) obj.inertia_kg_m2[r] = vec<3>(inertia[r], fmt::format("{}.inertia_kg_m2[{}]", w, r));
+    const json& mat = need(o, "material", w);
+    if (!mat.is_string() || !scene.materials.count(mat.get<std::string>())) bad(w + ".material", mat.dump() + " is not in materials");
+    obj.material = mat.get<std::string>();
+    if (o.contains("created_s")) obj.created_s = number(o["created_s"], w + ".created_s");
+    if (o.contains("destroyed_s") && !o["destroyed_s"].is_null()) obj.destroyed_s = number(o["destroyed_s"], w + ".destroyed_s");
+    if (!(obj.destroyed_s > obj.created_s)) bad(w + ".destroyed_s", fmt::format("{}: must be after created_s = {}", obj.destroyed_s, obj.created_s));
+    scene.objects.push_back(obj);
+  }
+  const json& listeners = need(root, "listeners", path);
+  if (!listeners.is_array() || listeners.empty()) bad(path + ": listeners", "expected at least one listener");
+  for (std::size_t i = 0; i < listeners.size(); ++i) {
+    const std::string w = fmt::format("{}: listeners[{}]", path, i);
+    scene.listeners_m.push_back(vec<3>(need(listeners[i], "position_m", w), w + ".position_m"));
+  }
+  if (root.contains("duration_s")) {
+    scene.duration_s = number(root["duration_s"], path + ": duration_s");
+    if (!(scene.duration_s > 0)) bad(path + ": duration_s", fmt::format("{}: must be > 0", scene.duration_s));
+  }
+  return scene;
+}
+
+json parse(const std::string& path) {
+  try {
+    return json::parse(read_text(path));
+  } catch (const json::parse_error& e) {
+    throw InputError(fmt::format("{}: not valid JSON: {}", path, e.what()));
+  }
+}
+
+// Checks one event against the scene and the previous event (events must come in time order:
+// a simulator that emits them otherwise has a bug worth hearing about).
+void check_event(const Scene& scene, const SceneEvent& e, double previous_t) {
+  auto known = [&](int id) {
+    for (const auto& o : scene.objects)
+      if (o.id == id) return true;
+    return false;
+  };
+  if (!(e.t_s >= 0)) bad(e.where, fmt::format("time {} s: must be >= 0", e.t_s));
+  if (e.t_s < previous_t)
+    bad(e.where, fmt::format("time {} s is before the previous event's {} s: events must be in time order", e.t_s, previous_t));
+  if (!known(e.a)) bad(e.where, fmt::format("object {} is not in the scene's objects", e.a));
+  if (e.b != 0 && !known(e.b)) bad(e.where, fmt::format("object {} is not in the scene's objects", e.b));
+  if (e.b == e.a) bad(e.where, fmt::format("object {} collides with itself", e.a));
+  if (!(e.normal_speed_m_s > 0)) bad(e.where, fmt::format("normal speed {} m/s: must be > 0", e.normal_speed_m_s));
+}
+
+}  // namespace
+
+Scene read_scene(const std::string& path) {
+  const json root = parse(path);
+  Scene scene = read_setting(root, path);
+  const json& events = need(root, "events", path);
+  double previous = 0;
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const json& j = events[i];
+    SceneEvent e;
+    e.where = fmt::format("{}: events[{}]", path, i);
+    e.t_s = number(need(j, "t_s", e.where), e.where + ".t_s");
+    const json& a = need(j, "a", e.where);
+    if (!a.is_number_integer()) bad(e.where + ".a", a.dump() + ": expected an object id");
+    e.a = a.get<int>();
+    const json& b = need(j, "b", e.where);
+    if (b == "ground")
+      e.b = 0;
+    else if (b.is_number_integer() && b.get<int>() >= 1)
+      e.b = b.get<int>();
+    else
+      bad(e.where + ".b", b.dump() + ": expected an object id or \"ground\"");
+    e.point_m = vec<3>(need(j, "point_m", e.where), e.where + ".point_m");
+    e.impulse_n_s = vec<3>(need(j, "impulse_n_s", e.where), e.where + ".impulse_n_s");
+    e.normal_speed_m_s = number(need(j, "normal_speed_m_s", e.where), e.where + ".normal_speed_m_s");
+    e.pose_a = pose(need(j, "pose_a", e.where), e.where + ".pose_a");
+    if (e.b != 0) e.pose_b = pose(need(j, "pose_b", e.where), e.where + ".pose_b");
+    check_event(scene, e, previous);
+    previous = e.t_s;
+    scene.events.push_back(e);
+  }
+  return scene;
+}
+
+Scene read_impulse_text(const std::string& impulse_path, const std::string& side_scene_path) {
+  Scene scene = read_setting(parse(side_scene_path), side_scene_path);
+  std::ifstream in(impulse_path);
+  if (!in) throw InputError(impulse_path + ": cannot open the impulse file");
+  std::string line;
+  double previous = 0;
+  for (int number_of_line = 1; std::getline(in, line); ++number_of_line) {
+    std::istringstream s(line);
+    std::string kind;
+    if (!(s >> kind) || kind[0] == '#') continue;
+    SceneEvent e;
+    e.where = fmt::format("{}:{}", impulse_path, number_of_line);
+    // Numbers through strtod, so "nan" and "inf" are read and then refused by name.
+    auto next = [&](const char* what) {
+      std::string token;
+      if (!(s >> token)) bad(e.where, std::string("missing ") + what);
+      char* end = nullptr;
+      const double v = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != 0) bad(e.where, fmt::format("{} '{}' is not a number", what, token));
+      if (!std::isfinite(v)) bad(e.where, fmt::format("{} is {}: must be finite", what, token));
+      return v;
+    };
+    auto next_id = [&](const char* what) {
+      const double v = next(what);
+      if (v != std::floor(v) || v < 1) bad(e.where, fmt::format("{} {}: expected an object id >= 1", what, v));
+      return static_cast<int>(v);
+    };
+    // One body: contact point p in the rest pose, centre x at time t, inverse rotation q (w x y z,
+    // world -> rest): the world contact point is R(q)^-1 p + x, and the body -> world rotation is q^-1.
+    auto body = [&](int& id, Pose& pose, std::array<double, 3>& rest_point) {
+      std::array<double, 4> q{};
+      id = next_id("object id");
+      for (auto* v : {&rest_point[0], &rest_point[1], &rest_point[2]}) *v = next("contact point p");
+      for (auto* v : {&pose.position_m[0], &pose.position_m[1], &pose.position_m[2]}) *v = next("centre of mass x");
+      for (auto* v : {&q[0], &q[1], &q[2], &q[3]}) *v = next("quaternion q");
+      const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+      if (!(std::abs(n - 1) < 1e-4)) bad(e.where, fmt::format("object {}: quaternion norm {}: must be a unit quaternion", id, n));
+      pose.orientation_wxyz = {q[0] / n, -q[1] / n, -q[2] / n, -q[3] / n};  // the inverse of q
+    };
+    std::array<double, 3> rest_a{}, rest_b{}, dir{};
+    double j = 0;
+    if (kind == "C" || kind == "P") {
+      e.t_s = next("time t");
+      body(e.a, e.pose_a, rest_a);
+      if (kind == "P") body(e.b, e.pose_b, rest_b);
+      e.normal_speed_m_s = next("normal speed vn");
+      j = next("impulse J");
+      for (auto* v : {&dir[0], &dir[1], &dir[2]}) *v = next("direction n");
+      if (std::string extra; s >> extra) bad(e.where, "unexpected '" + extra + "' after the direction n");
+    } else {
+      bad(e.where, "'" + kind + "': expected C (object-ground) or P (object pair)");
+    }
+    // World contact point from A's rest-pose point.
+    const auto& q = e.pose_a.orientation_wxyz;  // body -> world
+    const std::array<double, 3> u{q[1], q[2], q[3]};
+    const double w = q[0];
+    const auto cross = [](const std::array<double, 3>& x, const std::array<double, 3>& y) {
+      return std::array<double, 3>{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+    };
+    const auto t = cross(u, rest_a);
+    const auto t2 = cross(u, std::array<double, 3>{2 * t[0], 2 * t[1], 2 * t[2]});
+    for (int k = 0; k < 3; ++k)  // v' = v + 2w (u x v) + u x (2 u x v)
+      e.point_m[static_cast<std::size_t>(k)] = rest_a[static_cast<std::size_t>(k)] + 2 * w * t[static_cast<std::size_t>(k)] +
+                                              t2[static_cast<std::size_t>(k)] + e.pose_a.position_m[static_cast<std::size_t>(k)];
+    for (int k = 0; k < 3; ++k) e.impulse_n_s[static_cast<std::size_t>(k)] = j * dir[static_cast<std::size_t>(k)];
+    check_event(scene, e, previous);
+    previous = e.t_s;
+    scene.events.push_back(e);
+  }
+  return scene;
+}
+
+}  // namespace clatter::io

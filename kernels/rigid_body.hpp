@@ -1,0 +1,28 @@
+#pragma once
+// A rigid piece of debris as its PAN proxy (Chadwick et al. 2012, section 3.3, eq. 11): the
+// ellipsoid with the piece's principal moments of inertia (shape) and volume (size).
+#include <array>
+
+namespace clatter::kernels {
+
+using Mat3 = std::array<std::array<double, 3>, 3>;
+using Vec3 = std::array<double, 3>;
+
+struct ProxyFit {
+  // Semi-axes a >= b >= c [m] of the equivalent ellipsoid.
+  double a_m = 0, b_m = 0, c_m = 0;
+  // Columns: the body-frame unit vectors of the proxy's x, y, z axes (the principal axes of the
+  // smallest, middle and largest moment; a right-handed frame).
+  Mat3 axes{};
+  Vec3 moments_kg_m2{};  // principal moments about those axes (ascending)
+};
+
+// Throws std::invalid_argument unless the inertia is symmetric positive definite and physically
+// possible for a rigid body (each principal moment at most the sum of the other two), mass > 0,
+// volume > 0. For a solid ellipsoid, eq. (11): I_x = m (b^2 + c^2) / 5 etc., so
+// a^2 = 5 (I_y + I_z - I_x) / (2 m); the three are then scaled together to the given volume.
+ProxyFit fit_proxy(const Mat3& inertia_kg_m2, double mass_kg, double volume_m3);
+
+Vec3 to_proxy_frame(const ProxyFit& fit, const Vec3& body);  // components along the proxy axes
+
+}  // namespace clatter::kernels

@@ -1,0 +1,111 @@
+#include "synth/render_scene.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "core/errors.hpp"
+#include "kernels/contact.hpp"
+
+namespace clatter::synth {
+namespace {
+
+// Radius of curvature of the proxy ellipsoid where the ray along `arm` (proxy frame) leaves it:
+// 1 / sqrt(Gaussian curvature), K = 1 / (a b c)^2 / (x^2/a^4 + y^2/b^4 + z^2/c^4)^2.
+double contact_radius(const kernels::ProxyFit& fit, const Vec3& arm_body) {
+  const Vec3 d = kernels::to_proxy_frame(fit, arm_body);
+  const double a = fit.a_m, b = fit.b_m, c = fit.c_m;
+  const double s = std::sqrt(d[0] * d[0] / (a * a) + d[1] * d[1] / (b * b) + d[2] * d[2] / (c * c));
+  if (!(s > 0)) return std::cbrt(a * b * c);  // contact at the centre: no direction, use the mean radius
+  const Vec3 x{d[0] / s, d[1] / s, d[2] / s};
+  const double q = x[0] * x[0] / (a * a * a * a) + x[1] * x[1] / (b * b * b * b) + x[2] * x[2] / (c * c * c * c);
+  return a * b * c * q;  // = 1 / sqrt(K)
+}
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+
+}  // namespace
+
+std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string& scene_path) {
+  std::vector<ObjectModel> models;
+  for (const auto& o : scene.objects) {
+    ObjectModel m;
+    m.object = &o;
+    try {
+      m.proxy = kernels::fit_proxy(o.inertia_kg_m2, o.mass_kg, o.volume_m3);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(fmt::format("{}: object {}: inertia_kg_m2: {}", scene_path, o.id, e.what()));
+    }
+    models.push_back(m);
+  }
+  return models;
+}
+
+std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scene,
+                                                           const std::vector<const SoundSource*>& sources,
+                                                           const RenderOptions& options, RenderStats* stats) {
+  const std::vector<ObjectModel> models = object_models(scene, scene.path);
+  std::map<int, const ObjectModel*> by_id;
+  for (const auto& m : models) by_id[m.object->id] = &m;
+  const double last = scene.events.empty() ? 0.0 : scene.events.back().t_s;
+  const double duration = scene.duration_s > 0 ? scene.duration_s : last + options.tail_s;
+  const auto n = static_cast<std::size_t>(std::ceil(duration * options.rate_hz));
+  std::vector<std::vector<std::vector<double>>> out(
+      sources.size(), std::vector<std::vector<double>>(scene.listeners_m.size(), std::vector<double>(n, 0.0)));
+  RenderStats local;
+  const io::SceneMaterial& ground = scene.materials.at(scene.ground_material);
+  for (const auto& e : scene.events) {
+    const ObjectModel* a = by_id.at(e.a);
+    const ObjectModel* b = e.b ? by_id.at(e.b) : nullptr;
+    const double j = std::sqrt(e.impulse_n_s[0] * e.impulse_n_s[0] + e.impulse_n_s[1] * e.impulse_n_s[1] +
+                               e.impulse_n_s[2] * e.impulse_n_s[2]);
+    if (!(j > 0)) continue;  // a resting contact: no sound
+    // Hertz: effective mass and radius of the pair (the ground: infinite mass, flat).
+    const Vec3 arm_a = rotate_inverse(e.pose_a.orientation_wxyz, sub(e.point_m, e.pose_a.position_m));
+    double inv_r = 1 / contact_radius(a->proxy, arm_a), inv_m = 1 / a->object->mass_kg;
+    Vec3 arm_b{};
+    if (b) {
+      arm_b = rotate_inverse(e.pose_b.orientation_wxyz, sub(e.point_m, e.pose_b.position_m));
+      inv_r += 1 / contact_radius(b->proxy, arm_b);
+      inv_m += 1 / b->object->mass_kg;
+    }
+    const auto& mat_a = scene.materials.at(a->object->material);
+    const auto& mat_b = b ? scene.materials.at(b->object->material) : ground;
+    const double tau = kernels::hertz_contact_time_s(1 / inv_m, 1 / inv_r, {mat_a.youngs_modulus_pa, mat_a.poisson_ratio},
+                                                     {mat_b.youngs_modulus_pa, mat_b.poisson_ratio}, e.normal_speed_m_s);
+    const double force = kernels::half_sine_peak(j, tau);
+    const Vec3 dir_world{e.impulse_n_s[0] / j, e.impulse_n_s[1] / j, e.impulse_n_s[2] / j};
+    for (int side = 0; side < (b ? 2 : 1); ++side) {
+      const ObjectModel* m = side == 0 ? a : b;
+      const io::Pose& pose = side == 0 ? e.pose_a : e.pose_b;
+      const double sign = side == 0 ? 1.0 : -1.0;  // B receives the opposite impulse
+      if (e.t_s < m->object->created_s || e.t_s >= m->object->destroyed_s) {
+        ++local.skipped_inactive;
+        continue;
+      }
+      Impact im;
+      im.model = m;
+      im.t_s = e.t_s;
+      im.tau_s = tau;
+      im.peak_force_n = force;
+      im.direction_body = rotate_inverse(pose.orientation_wxyz, {sign * dir_world[0], sign * dir_world[1], sign * dir_world[2]});
+      im.contact_body_m = side == 0 ? arm_a : arm_b;
+      im.pose = pose;
+      for (std::size_t s = 0; s < sources.size(); ++s)
+        for (std::size_t l = 0; l < scene.listeners_m.size(); ++l) {
+          try {
+            sources[s]->add(im, scene.listeners_m[l], options.rate_hz, out[s][l]);
+          } catch (const InputError& err) {
+            throw InputError(fmt::format("{}: {}", e.where, err.what()));
+          }
+        }
+      ++local.impacts;
+    }
+  }
+  if (stats) *stats = local;
+  return out;
+}
+
+}  // namespace clatter::synth

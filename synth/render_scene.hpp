@@ -1,0 +1,32 @@
+#pragma once
+// The synthesizer's one loop: events in time order, each split into one Impact per object it
+// moves (Hertz duration, half-sine force), fed to every sound source for every listener.
+#include <memory>
+#include <vector>
+
+#include "io/scene.hpp"
+#include "synth/sources.hpp"
+
+namespace clatter::synth {
+
+struct RenderOptions {
+  int rate_hz = 44100;
+  double tail_s = 0.1;  // rendered after the last event when the scene gives no duration
+};
+
+struct RenderStats {
+  std::size_t impacts = 0;          // object-side impacts rendered
+  std::size_t skipped_inactive = 0; // impacts on objects not yet created or already destroyed
+};
+
+// stems[s][l]: the samples of source s at listener l. Throws InputError (naming the scene file,
+// object or event) for an object whose inertia cannot be a rigid body's or a listener inside an
+// object.
+std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scene,
+                                                           const std::vector<const SoundSource*>& sources,
+                                                           const RenderOptions& options, RenderStats* stats = nullptr);
+
+// The objects' proxies (eq. 11); InputError names the object.
+std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string& scene_path);
+
+}  // namespace clatter::synth

@@ -1,0 +1,95 @@
+#include "synth/sources.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/errors.hpp"
+#include "kernels/pan/render.hpp"
+
+namespace clatter::synth {
+
+Vec3 rotate(const std::array<double, 4>& q, const Vec3& v) {
+  // v' = v + 2w (u x v) + 2 u x (u x v), u = (x, y, z)
+  const Vec3 u{q[1], q[2], q[3]};
+  auto cross = [](const Vec3& a, const Vec3& b) {
+    return Vec3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  const Vec3 t = cross(u, v), t2 = cross(u, t);
+  return {v[0] + 2 * (q[0] * t[0] + t2[0]), v[1] + 2 * (q[0] * t[1] + t2[1]), v[2] + 2 * (q[0] * t[2] + t2[2])};
+}
+
+Vec3 rotate_inverse(const std::array<double, 4>& q, const Vec3& v) { return rotate({q[0], -q[1], -q[2], -q[3]}, v); }
+
+kernels::pan::ProxyField proxy_field(const io::PanBankHeader& h, const io::PanProxy& proxy, int field) {
+  kernels::pan::ProxyField f;
+  f.field = field;
+  f.terms = h.terms;
+  f.length = h.length;
+  f.dt_s = h.dt_s;
+  f.t_first_s = h.t_first_s;
+  f.c_m_s = h.c_m_s;
+  for (const auto& d : proxy.fields.at(static_cast<std::size_t>(field - 1))) f.directions.push_back({d.index, d.value});
+  f.delay_steps.assign(proxy.delay_steps.begin(), proxy.delay_steps.end());
+  return f;
+}
+
+PanSource::PanSource(const std::string& bank_path) : path_(bank_path) {
+  io::PanBank bank = io::read_pan_bank(bank_path);
+  header_ = bank.header;
+  proxies_ = std::move(bank.proxies);
+  for (const auto& p : proxies_) {
+    std::array<kernels::pan::ProxyField, 6> f;
+    std::array<bool, 6> solved{};
+    for (int i = 1; i <= 6; ++i) {
+      solved[static_cast<std::size_t>(i - 1)] = p.fields[static_cast<std::size_t>(i - 1)].size() == header_.directions.size();
+      if (solved[static_cast<std::size_t>(i - 1)]) f[static_cast<std::size_t>(i - 1)] = proxy_field(header_, p, i);
+    }
+    fields_.push_back(std::move(f));
+    solved_.push_back(solved);
+  }
+  if (proxies_.empty()) throw InputError(bank_path + ": the bank holds no proxies");
+}
+
+std::size_t PanSource::nearest_proxy(const kernels::ProxyFit& fit) const {
+  // Shapes compare at the bank's A: (B, C) = A (b, c) / a.
+  const double b = header_.a_m * fit.b_m / fit.a_m, c = header_.a_m * fit.c_m / fit.a_m;
+  std::size_t best = 0;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < proxies_.size(); ++i) {
+    const double d = std::hypot(proxies_[i].b_m - b, proxies_[i].c_m - c);
+    if (d < best_d) best_d = d, best = i;
+  }
+  return best;
+}
+
+void PanSource::add(const Impact& im, const Vec3& listener, int rate_hz, std::vector<double>& out) const {
+  const auto& fit = im.model->proxy;
+  const std::size_t p = nearest_proxy(fit);
+  const double beta = fit.a_m / header_.a_m;
+  // Listener and accelerations in the proxy frame (its axes are the body's principal axes).
+  const Vec3& x0 = im.pose.position_m;
+  const Vec3 body = rotate_inverse(im.pose.orientation_wxyz, {listener[0] - x0[0], listener[1] - x0[1], listener[2] - x0[2]});
+  const Vec3 lp = kernels::to_proxy_frame(fit, body);
+  const double r = std::sqrt(lp[0] * lp[0] + lp[1] * lp[1] + lp[2] * lp[2]);
+  if (!(r > fit.a_m))
+    throw InputError(fmt::format("listener ({}, {}, {}) is {:.4g} m from object {} at t = {} s, inside its bounding sphere "
+                                 "(radius {:.4g} m)",
+                                 listener[0], listener[1], listener[2], r, im.model->object->id, im.t_s, fit.a_m));
+  const Vec3 n = kernels::to_proxy_frame(fit, im.direction_body), arm = kernels::to_proxy_frame(fit, im.contact_body_m);
+  const double m = im.model->object->mass_kg, f = im.peak_force_n;
+  const Vec3 torque{arm[1] * n[2] - arm[2] * n[1], arm[2] * n[0] - arm[0] * n[2], arm[0] * n[1] - arm[1] * n[0]};
+  kernels::pan::HalfSineAcceleration a;
+  a.t0_s = im.t_s;
+  a.tau_s = im.tau_s;
+  std::array<const kernels::pan::ProxyField*, 6> fields{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    a.peak[i] = f * n[i] / m;                                  // translation, eq. (9) fields 1-3
+    a.peak[3 + i] = f * torque[i] / fit.moments_kg_m2[i];      // rotation about the principal axes
+  }
+  for (std::size_t i = 0; i < 6; ++i) fields[i] = solved_[p][i] ? &fields_[p][i] : nullptr;
+  kernels::pan::render_impact(fields, beta, header_.h_s, lp, a, rate_hz, 0.0, out);
+}
+
+}  // namespace clatter::synth

@@ -1,0 +1,154 @@
+#!/usr/bin/env python3
+"""clatter-synth end to end (docs/synth.md), on the demo scene and a PAN bank:
+- linearity: a scene with two events renders to the sum of the scenes with each alone;
+- fracture debris: an object created at t0 is silent before t0 (its earlier event is skipped);
+- the James-lab impulse text format gives the same sound as the equivalent native scene;
+- bad input: exit 2, one error line naming the field, and no output file.
+Usage: synth_checks.py CLATTER_SYNTH BANK DEMO_SCENE SCRATCH"""
+import copy, json, math, os, shutil, subprocess, sys
+import numpy as np
+
+synth, bank, demo_path, scratch = sys.argv[1:5]
+shutil.rmtree(scratch, ignore_errors=True)
+os.makedirs(scratch)
+os.chdir(scratch)
+demo = json.load(open(demo_path))
+failures = []
+
+
+def check(ok, what):
+    print(("ok:   " if ok else "FAIL: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def run(scene, out, extra=()):
+    path = out + ".json"
+    json.dump(scene, open(path, "w"))
+    r = subprocess.run([synth, "-i", path, "-b", bank, "-o", out + ".wav", *extra], capture_output=True, text=True)
+    return r, path
+
+
+def wav(path):  # float32 WAV from libsndfile: the samples of the data chunk
+    raw = open(path, "rb").read()
+    channels = int.from_bytes(raw[22:24], "little")
+    i = raw.index(b"data")
+    n = int.from_bytes(raw[i + 4:i + 8], "little")
+    return np.frombuffer(raw[i + 8:i + 8 + n], dtype="<f4").reshape(-1, channels).astype(np.float64)
+
+
+def render(scene, name):
+    r, _ = run(scene, name)
+    if r.returncode != 0:
+        print(r.stdout, r.stderr)
+        raise SystemExit(f"{name}: exit {r.returncode}")
+    return wav(name + ".wav")
+
+
+# Linearity: event 0 of the demo and a weaker hit on the same object 1.3 ms later (they overlap).
+second = copy.deepcopy(demo["events"][0])
+second["t_s"] += 0.0013
+second["impulse_n_s"] = [0.7 * c for c in second["impulse_n_s"]]
+base = copy.deepcopy(demo)
+base["events"] = [demo["events"][0]]
+one = render(base, "one")
+base["events"] = [second]
+two = render(base, "two")
+base["events"] = [demo["events"][0], second]
+both = render(base, "both")
+peak = np.abs(both).max()
+err = np.abs(both - (one + two)).max() / peak
+overlap = np.abs(one * two).max() > 0
+check(peak > 0 and overlap and err < 1e-6, f"linearity: two impulses = the sum of each alone, max deviation {err:.2e} of the peak (float32 storage)")
+
+# Debris: object 5 exists from 0.5 s; an event at 0.3 s is skipped, one at 0.6 s sounds.
+deb = copy.deepcopy(demo)
+early = copy.deepcopy([e for e in demo["events"] if e["a"] == 5][0])
+early["t_s"] = 0.3
+late = copy.deepcopy(early)
+late["t_s"] = 0.6
+deb["events"] = [early, late]
+d = render(deb, "debris")
+rate = 44100
+first = np.nonzero(np.abs(d).max(axis=1))[0]
+check(len(first) > 0 and first[0] / rate >= 0.6, f"debris created at 0.5 s: silent before its first live impact "
+      f"(first non-zero sample at {first[0] / rate if len(first) else float('nan'):.4f} s)")
+check(np.all(d[: int(0.5 * rate)] == 0), "debris: every sample before t0 = 0.5 s is exactly zero")
+
+# The James-lab impulse format against the same events written natively.
+def quat_mul(a, b):
+    w1, x1, y1, z1 = a
+    w2, x2, y2, z2 = b
+    return [w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2]
+
+
+def rest_point(point, pose):  # world -> body: q^-1 (p - x) q
+    q = pose["orientation_wxyz"]
+    v = [0.0] + [point[k] - pose["position_m"][k] for k in range(3)]
+    qi = [q[0], -q[1], -q[2], -q[3]]
+    return quat_mul(quat_mul(qi, v), q)[1:]
+
+
+lines = ["# hand-written from the native scene: C t id pA xA qA vn J n, P ... for pairs"]
+for e in demo["events"]:
+    j = math.sqrt(sum(c * c for c in e["impulse_n_s"]))
+    n = [c / j for c in e["impulse_n_s"]]
+    def body(pose, point):
+        q = pose["orientation_wxyz"]
+        inv = [q[0], -q[1], -q[2], -q[3]]  # James: the inverse rotation
+        p = rest_point(point, pose)
+        return " ".join(f"{v:.17g}" for v in [*p, *pose["position_m"], *inv])
+    if e["b"] == "ground":
+        lines.append(f"C {e['t_s']:.17g} {e['a']} {body(e['pose_a'], e['point_m'])} {e['normal_speed_m_s']:.17g} {j:.17g} "
+                     + " ".join(f"{v:.17g}" for v in n))
+    else:
+        lines.append(f"P {e['t_s']:.17g} {e['a']} {body(e['pose_a'], e['point_m'])} {e['b']} {body(e['pose_b'], e['point_m'])} "
+                     f"{e['normal_speed_m_s']:.17g} {j:.17g} " + " ".join(f"{v:.17g}" for v in n))
+open("impulses.txt", "w").write("\n".join(lines) + "\n")
+native = render(demo, "native")
+side = copy.deepcopy(demo)
+side["events"] = []
+json.dump(side, open("side.json", "w"))
+r = subprocess.run([synth, "-i", "side.json", "--impulses", "impulses.txt", "-b", bank, "-o", "james.wav"], capture_output=True, text=True)
+check(r.returncode == 0, f"James-lab impulse file renders (exit {r.returncode}) {r.stderr.strip()}")
+if r.returncode == 0:
+    james = wav("james.wav")
+    err = np.abs(james - native).max() / np.abs(native).max()
+    check(err < 1e-6, f"James-lab file = the native scene, max deviation {err:.2e} of the peak")
+
+# Bad input: (mutation, fragments the error line must contain).
+def mutate(f):
+    s = copy.deepcopy(demo)
+    f(s)
+    return s
+
+
+cases = [
+    ("unknown object id", mutate(lambda s: s["events"][2].update(a=42)), ["events[2]", "object 42"]),
+    ("non-symmetric inertia", mutate(lambda s: s["objects"][1]["inertia_kg_m2"][0].__setitem__(1, 1e-3)), ["object 2", "not symmetric"]),
+    ("non-positive-definite inertia", mutate(lambda s: s["objects"][0]["inertia_kg_m2"][2].__setitem__(2, -1e-4)), ["object 1", "positive definite"]),
+    ("negative mass", mutate(lambda s: s["objects"][0].update(mass_kg=-1)), ["objects[0].mass_kg", "-1"]),
+    ("listener inside an object", mutate(lambda s: s["listeners"][0].update(position_m=s["events"][0]["pose_a"]["position_m"])), ["listener", "inside"]),
+    ("events out of time order", mutate(lambda s: s["events"][5].update(t_s=0.0)), ["events[5]", "time order"]),
+    ("wrong scene version", mutate(lambda s: s.update(format_version=7)), ["format_version", "7"]),
+    ("unknown material", mutate(lambda s: s["objects"][2].update(material="unobtainium")), ["objects[2].material", "unobtainium"]),
+]
+for name, scene, fragments in cases:
+    r, _ = run(scene, "bad")
+    lines = [l for l in r.stderr.splitlines() if l.startswith("clatter-")]
+    ok = r.returncode == 2 and len(lines) == 1 and all(f in lines[0] for f in fragments) and not os.path.exists("bad.wav")
+    check(ok, f"bad input, {name}: exit {r.returncode}, {lines[0] if lines else r.stderr.strip()}")
+# NaN in the text format, a bank of another version.
+open("nan.txt", "w").write("C 0.1 1 0 0 0 0 0 0.1 1 0 0 0 nan 0.01 0 0 1\n")
+r = subprocess.run([synth, "-i", "side.json", "--impulses", "nan.txt", "-b", bank, "-o", "nan.wav"], capture_output=True, text=True)
+check(r.returncode == 2 and "nan.txt:1" in r.stderr and "nan: must be finite" in r.stderr and not os.path.exists("nan.wav"), f"bad input, NaN: exit {r.returncode}, {r.stderr.strip()}")
+import h5py
+shutil.copy(bank, "old.h5")
+with h5py.File("old.h5", "r+") as f:
+    f.attrs["format_version"] = np.int32(1)
+r = subprocess.run([synth, "-i", demo_path, "-b", "old.h5", "-o", "old.wav"], capture_output=True, text=True)
+check(r.returncode == 2 and "version 1" in r.stderr and not os.path.exists("old.wav"), f"bad input, bank version: exit {r.returncode}, {r.stderr.strip()}")
+
+print("synth checks: " + ("all passed" if not failures else f"{len(failures)} FAILED"))
+sys.exit(1 if failures else 0)
