@@ -40,6 +40,8 @@ bench: build
 	$(BUILD)/bin/clatter-bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
 	    --benchmark_out=out/bench/bench.json --benchmark_out_format=json
 	bench/fdtd.sh $(BUILD) 3 | tee out/bench/fdtd.txt
+	test -f out/bench/pan.h5 || mpiexec -n 2 $(BUILD)/bin/clatter-bank pan -o out/bench/pan.h5
+	$(BUILD)/bin/clatter-synth-bench out/bench/pan.h5 5 | tee out/bench/synth.txt
 
 clean:
 	rm -rf build out

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/errors.hpp"
+#include "core/stage_log.hpp"
 #include "kernels/contact.hpp"
 
 namespace clatter::synth {
@@ -56,7 +57,9 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
       sources.size(), std::vector<std::vector<double>>(scene.listeners_m.size(), std::vector<double>(n, 0.0)));
   RenderStats local;
   const io::SceneMaterial& ground = scene.materials.at(scene.ground_material);
+  Stage render_stage("render");
   for (const auto& e : scene.events) {
+    Stage event_stage("event");  // contact model, frames; the sources time their own parts
     const ObjectModel* a = by_id.at(e.a);
     const ObjectModel* b = e.b ? by_id.at(e.b) : nullptr;
     const double j = std::sqrt(e.impulse_n_s[0] * e.impulse_n_s[0] + e.impulse_n_s[1] * e.impulse_n_s[1] +

@@ -55,7 +55,7 @@ Series evaluate_sum(const std::array<const ProxyField*, 6>& fields, const std::a
   if (!first->delay_steps.empty())
     for (std::size_t v = 0; v < static_cast<std::size_t>(w.count); ++v)
       delay += w.weight[v] * first->delay_steps.at(static_cast<std::size_t>(w.vertex[v]));
-  const Wavelet wavelet(first->length);
+  const Wavelet& wavelet = cached_wavelet(first->length);
   wavelet.inverse(c);
   const double levels_dropped = std::log2(static_cast<double>(first->length) / static_cast<double>(n));
   Series s;

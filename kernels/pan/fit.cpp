@@ -59,11 +59,15 @@ SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_s
 }
 
 void accumulate(const SparseTerms& terms, int n_terms, double radius_m, double weight, std::vector<double>& coefficients) {
-  std::vector<double> scale(static_cast<std::size_t>(n_terms));
-  for (int k = 0; k < n_terms; ++k) scale[static_cast<std::size_t>(k)] = weight * std::pow(radius_m, -(k + 1));
+  // Called per vertex and field for every impact the synthesizer renders: no allocation, no pow.
+  std::array<double, 8> scale{};
+  if (n_terms < 1 || n_terms > static_cast<int>(scale.size())) throw std::invalid_argument("PAN accumulate: 1 to 8 terms");
+  const double inv_r = 1.0 / radius_m;
+  double power = weight * inv_r;
+  for (int k = 0; k < n_terms; ++k, power *= inv_r) scale[static_cast<std::size_t>(k)] = power;
   for (std::size_t e = 0; e < terms.index.size(); ++e) {
     const std::size_t j = terms.index[e];
-    if (j >= coefficients.size()) continue;  // Algorithm 1: coarser reconstructions drop the finest levels
+    if (j >= coefficients.size()) break;  // Algorithm 1 dropped the finest levels (indices ascend)
     double s = 0;
     for (int k = 0; k < n_terms; ++k)
       s += scale[static_cast<std::size_t>(k)] * terms.value[e * static_cast<std::size_t>(n_terms) + static_cast<std::size_t>(k)];

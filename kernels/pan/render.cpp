@@ -23,10 +23,9 @@ double gauss10(double lo, double hi, F f) {
   return s * half;
 }
 
-// Catmull-Rom cubic through p[i-1..i+2] at i + f (0 <= f < 1); zero outside the series.
-double cubic(const std::vector<double>& p, long i, double f) {
-  auto at = [&](long j) { return j >= 0 && j < static_cast<long>(p.size()) ? p[static_cast<std::size_t>(j)] : 0.0; };
-  const double a = at(i - 1), b = at(i), c = at(i + 1), d = at(i + 2);
+// Catmull-Rom cubic through q[j-1..j+2] at j + f (0 <= f < 1).
+inline double cubic(const double* q, double f) {
+  const double a = q[-1], b = q[0], c = q[1], d = q[2];
   return b + 0.5 * f * (c - a + f * (2 * a - 5 * b + 4 * c - d + f * (3 * (b - c) + d - a)));
 }
 
@@ -68,16 +67,26 @@ void render_impact(const std::array<const ProxyField*, 6>& fields, double beta, 
   const Series p = evaluate_sum(fields, a.peak, x_m, beta, rate_hz);
   const double step = beta * h_s;
   const PulseWeights w = half_sine_weights(a.t0_s, a.tau_s, step);
-  const double span_s = static_cast<double>(p.p.size()) * p.dt_s;
-  for (std::size_t q = 0; q < w.z.size(); ++q) {
+  // The series with two zeros of padding on each side, so that the cubic needs no bounds checks.
+  thread_local std::vector<double> padded;
+  padded.assign(p.p.size() + 4, 0.0);
+  std::copy(p.p.begin(), p.p.end(), padded.begin() + 2);
+  const double* q0 = padded.data() + 2;
+  const long last = static_cast<long>(p.p.size());  // the cubic reaches q0[-1 .. last]
+  const double span_s = static_cast<double>(last + 1) * p.dt_s, du = 1.0 / (rate_hz * p.dt_s);
+  for (std::size_t q = 0; q < w.z.size(); ++q) {  // each shifted, weighted copy of the series
     if (w.z[q] == 0) continue;
-    const double shift = static_cast<double>(w.k_first + static_cast<long>(q)) * step + p.t0_s;  // time of p[0]
-    const long n_lo = std::max(0L, static_cast<long>(std::ceil((shift - t_begin_s) * rate_hz)));
+    const double z = w.z[q];
+    const double shift = static_cast<double>(w.k_first + static_cast<long>(q)) * step + p.t0_s;  // time of q0[0]
+    const long n_lo = std::max(0L, static_cast<long>(std::ceil((shift - p.dt_s - t_begin_s) * rate_hz)));
     const long n_hi = std::min(static_cast<long>(out.size()) - 1, static_cast<long>(std::floor((shift + span_s - t_begin_s) * rate_hz)));
+    const double u0 = (t_begin_s - shift) / p.dt_s;
     for (long n = n_lo; n <= n_hi; ++n) {
-      const double u = (t_begin_s + static_cast<double>(n) / rate_hz - shift) / p.dt_s;
-      const long i = static_cast<long>(std::floor(u));
-      out[static_cast<std::size_t>(n)] += w.z[q] * cubic(p.p, i, u - static_cast<double>(i));
+      const double u = u0 + static_cast<double>(n) * du;
+      if (!(u >= -1.0)) continue;                     // n_lo rounds down by at most a sample
+      const long i = static_cast<long>(u + 1.0) - 1;  // floor for u >= -1, without a libm call
+      if (i >= last) break;
+      out[static_cast<std::size_t>(n)] += z * cubic(q0 + i, u - static_cast<double>(i));
     }
   }
 }

@@ -3,6 +3,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_wavelet.h>
 
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +34,13 @@ Wavelet::Wavelet(std::size_t length) : impl_(std::make_unique<Impl>()), n_(lengt
 }
 
 Wavelet::~Wavelet() = default;
+
+const Wavelet& cached_wavelet(std::size_t length) {
+  thread_local std::map<std::size_t, std::unique_ptr<Wavelet>> cache;
+  auto& slot = cache[length];
+  if (!slot) slot = std::make_unique<Wavelet>(length);
+  return *slot;
+}
 
 double Wavelet::scaling_delay_samples() const {
   double moment = 0, sum = 0;

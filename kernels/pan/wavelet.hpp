@@ -31,4 +31,8 @@ class Wavelet {
 
 std::size_t next_power_of_two(std::size_t n);
 
+// A transform of this length, built once per thread (GSL allocates filters and a workspace; the
+// synthesizer evaluates a field per impact).
+const Wavelet& cached_wavelet(std::size_t length);
+
 }  // namespace clatter::kernels::pan
