@@ -257,3 +257,33 @@ TEST(Contact, HertzTimeFollowsItsScalingLaws) {
   EXPECT_NEAR(hertz_contact_time_s(4.11e-3 * 32, 0.01, steel, steel, 1.0) / t, 4.0, 1e-12);  // m^(2/5)
   EXPECT_NEAR(clatter::kernels::half_sine_peak(2.0, 1e-3) * 2 * 1e-3 / 3.14159265358979323846, 2.0, 1e-12);
 }
+
+TEST(PanRender, AScaledObjectFollowsEquation10) {
+  // Scale everything by gamma: the object (beta -> gamma beta), the listener (x -> gamma x), the
+  // contact in time (t0, tau -> gamma t0, gamma tau) and the output rate (f -> f / gamma). Eq. (10)
+  // then says the samples scale by gamma^s (s = 1 translation, 2 rotation) times the acceleration
+  // ratio: P^(gamma beta h)(gamma x, gamma t) = gamma^s P^(beta h)(x, t). Algorithm 1 makes the
+  // same level choice for both, so the samples agree to round-off.
+  for (int field : {2, 6}) {
+    const auto b = build(0.0, field);
+    std::array<const ProxyField*, 6> fields{};
+    fields[static_cast<std::size_t>(field - 1)] = &b.field;
+    const double beta = 0.1, gamma = 2.5, h = b.field.dt_s * 2, rate = 44100;
+    const std::array<double, 3> x{0.3, -0.4, 0.5};
+    HalfSineAcceleration a;
+    a.t0_s = 0.001;
+    a.tau_s = 3e-4;
+    a.peak[static_cast<std::size_t>(field - 1)] = 50.0;
+    HalfSineAcceleration a2 = a;
+    a2.t0_s *= gamma;
+    a2.tau_s *= gamma;
+    std::vector<double> one(400, 0.0), two(400, 0.0);
+    render_impact(fields, beta, h, x, a, rate, 0.0, one);
+    render_impact(fields, gamma * beta, h, {gamma * x[0], gamma * x[1], gamma * x[2]}, a2, rate / gamma, 0.0, two);
+    const double power = field <= 3 ? gamma : gamma * gamma;
+    double peak = 0;
+    for (double v : one) peak = std::max(peak, std::abs(v));
+    ASSERT_GT(peak, 0);
+    for (std::size_t n = 0; n < one.size(); ++n) EXPECT_NEAR(two[n], power * one[n], 1e-9 * power * peak) << n;
+  }
+}
