@@ -127,38 +127,34 @@ std::string run_plan(const io::Config& config, const PlanOptions& o) {
     const std::string header = fmt::format(
         "#!/bin/bash\n# Written by clatter-bank plan for {} ({} tasks; predicted {} on {} ranks).\n", job.config_path,
         tasks.size(), clock_text(wall_s), o.ranks);
-    if (o.array <= 0) {
-      write_script(o.sbatch, header + fmt::format(R"(#SBATCH --job-name=clatter-pan
-#SBATCH --nodes={}
+    // One sweep job: the whole bank, or (array) one slice of it per element. Either way it requeues
+    // itself when interrupted (exit 3) and every start resumes.
+    const bool array = o.array > 0;
+    const std::size_t per_element =
+        array ? (tasks.size() + static_cast<std::size_t>(o.array) - 1) / static_cast<std::size_t>(o.array) : tasks.size();
+    const std::size_t job_waves = (per_element + static_cast<std::size_t>(groups) - 1) / static_cast<std::size_t>(groups);
+    const double job_limit_s = 1.5 * static_cast<double>(job_waves) * task_s + 600;
+    write_script(o.sbatch,
+                 header + fmt::format(R"(#SBATCH --job-name=clatter-pan{}
+{}#SBATCH --nodes={}
 #SBATCH --ntasks={}
 #SBATCH --time={}
 #SBATCH --signal=TERM@120
 #SBATCH --requeue
 #SBATCH --open-mode=append
-#SBATCH --output=clatter-pan-%j.out
+#SBATCH --output=clatter-pan-{}.out
 set -u
-{}if [ "$rc" -eq 3 ]; then echo "clatter: interrupted (exit 3), requeueing"; scontrol requeue "$SLURM_JOB_ID"; fi
+{}if [ "$rc" -eq 3 ]; then echo "clatter: interrupted (exit 3), requeueing"; scontrol requeue "{}"; fi
 exit "$rc"
-)", nodes, o.ranks, clock_text(limit_s), run_block(sweep_command(job, results, ""))));
+)",
+                                      array ? "-array" : "", array ? fmt::format("#SBATCH --array=0-{}\n", o.array - 1) : "",
+                                      nodes, o.ranks, clock_text(job_limit_s), array ? "%A_%a" : "%j",
+                                      run_block(sweep_command(
+                                          job, results, array ? " --slice ${SLURM_ARRAY_TASK_ID}/${SLURM_ARRAY_TASK_COUNT}" : "")),
+                                      array ? "${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}" : "$SLURM_JOB_ID"));
+    if (!array) {
       out += fmt::format("  wrote {}: submit with `sbatch {}`\n", o.sbatch, o.sbatch);
     } else {
-      const std::size_t per_element = (tasks.size() + static_cast<std::size_t>(o.array) - 1) / static_cast<std::size_t>(o.array);
-      const std::size_t element_waves = (per_element + static_cast<std::size_t>(groups) - 1) / static_cast<std::size_t>(groups);
-      const double element_limit_s = 1.5 * static_cast<double>(element_waves) * task_s + 600;
-      write_script(o.sbatch, header + fmt::format(R"(#SBATCH --job-name=clatter-pan-array
-#SBATCH --array=0-{}
-#SBATCH --nodes={}
-#SBATCH --ntasks={}
-#SBATCH --time={}
-#SBATCH --signal=TERM@120
-#SBATCH --requeue
-#SBATCH --open-mode=append
-#SBATCH --output=clatter-pan-%A_%a.out
-set -u
-{}if [ "$rc" -eq 3 ]; then scontrol requeue "${{SLURM_ARRAY_JOB_ID}}_${{SLURM_ARRAY_TASK_ID}}"; fi
-exit "$rc"
-)", o.array - 1, nodes, o.ranks, clock_text(element_limit_s),
-          run_block(sweep_command(job, results, " --slice ${SLURM_ARRAY_TASK_ID}/${SLURM_ARRAY_TASK_COUNT}"))));
       write_script(o.sbatch + ".merge", fmt::format(R"(#!/bin/bash
 # Merges the slices of {} into {} once every array element succeeded (--dependency=afterok).
 #SBATCH --job-name=clatter-pan-merge
@@ -170,7 +166,7 @@ srun --mpi=pmix {} merge --results {} --out {}
 )", o.sbatch, o.out, o.binary, results, o.out));
       out += fmt::format("  wrote {} ({} elements of ~{} tasks, limit {}) and {}.merge; submit with\n"
                          "    jid=$(sbatch --parsable {}) && sbatch --dependency=afterok:${{jid%%;*}} {}.merge\n",
-                         o.sbatch, o.array, per_element, clock_text(element_limit_s), o.sbatch, o.sbatch, o.sbatch);
+                         o.sbatch, o.array, per_element, clock_text(job_limit_s), o.sbatch, o.sbatch, o.sbatch);
     }
   }
   return out;

@@ -32,6 +32,35 @@ io::PanProxy through_file(const jobs::PanSpec& spec, const io::PanProxy& proxy, 
   return io::read_pan_bank(path).proxies.at(0);
 }
 
+
+// The sphere proxy B = C = 0.5 at 3 cm cells, field 1 (translation along x), through a bank file;
+// on non-root ranks the field is empty (the solve is collective, the checks run on rank 0).
+struct SphereProxy {
+  jobs::PanSpec spec;
+  kernels::pan::ProxyField field;
+};
+SphereProxy sphere_proxy(const std::string& file) {
+  io::Config config(jobs::pan_schema());
+  config.set("proxies.list_m=[[0.5, 0.5]]");
+  config.set("grid.dx_m=0.03");
+  config.set("solve.fields=[1]");
+  SphereProxy out{jobs::make_pan_spec(config), {}};
+  auto result = jobs::build_proxy(MPI_COMM_WORLD, out.spec, 0, {}, 0.0);
+  if (root()) out.field = jobs::proxy_field(jobs::pan_header(out.spec), through_file(out.spec, result.proxy, file), 1);
+  return out;
+}
+
+// Relative L2 of samples against a reference evaluated at each sample index.
+template <class Want>
+double relative_l2(const std::vector<double>& got, Want want) {
+  double num = 0, den = 0;
+  for (std::size_t n = 0; n < got.size(); ++n) {
+    const double w = want(n);
+    num += (got[n] - w) * (got[n] - w);
+    den += w * w;
+  }
+  return std::sqrt(num / den);
+}
 }  // namespace
 
 namespace {
@@ -105,29 +134,16 @@ TEST(PanBank, LinearDirectionInterpolationNeedsFinerDirections) {
 }
 
 TEST(PanBank, SphereProxyReproducesTheExactTranslatingSphere) {
-  io::Config config(jobs::pan_schema());
-  config.set("proxies.list_m=[[0.5, 0.5]]");
-  config.set("grid.dx_m=0.03");
-  config.set("solve.fields=[1]");
-  const auto spec = jobs::make_pan_spec(config);
-  auto result = jobs::build_proxy(MPI_COMM_WORLD, spec, 0, {}, 0.0);
+  const SphereProxy sphere = sphere_proxy("pan_sphere.h5");
   if (!root()) return;
-  const auto proxy = through_file(spec, result.proxy, "pan_sphere.h5");
-  const auto field = jobs::proxy_field(jobs::pan_header(spec), proxy, 1);
-  const auto& p = spec.solve.problem;
+  const auto& p = sphere.spec.solve.problem;
   const reference::TranslatingSphere exact{0.5, p.c_m_s, p.rho_kg_m3, p.h_s};
-  const double r_max = spec.radii_m.back();
-  for (double r : {0.5 * (spec.radii_m[1] + spec.radii_m[2]), 3 * r_max}) {
+  const auto& radii = sphere.spec.radii_m;
+  for (double r : {0.5 * (radii[1] + radii[2]), 3 * radii.back()}) {
     const std::array<double, 3> x{0.6 * r, 0.48 * r, 0.64 * r};  // |x| = r, cos(theta_x) = 0.6
-    const auto s = kernels::pan::evaluate(field, x);
-    double num = 0, den = 0;
-    for (std::size_t k = 0; k < s.p.size(); ++k) {
-      // Field 1 translates along x: the dipole axis is x.
-      const double want = exact.pressure(r, 0.6, s.t0_s + static_cast<double>(k) * s.dt_s);
-      num += (s.p[k] - want) * (s.p[k] - want);
-      den += want * want;
-    }
-    const double err = std::sqrt(num / den);
+    const auto s = kernels::pan::evaluate(sphere.field, x);
+    // Field 1 translates along x: the dipole axis is x.
+    const double err = relative_l2(s.p, [&](std::size_t k) { return exact.pressure(r, 0.6, s.t0_s + static_cast<double>(k) * s.dt_s); });
     std::printf("sphere proxy at r = %.3f m: relative L2 %.4f vs the exact solution\n", r, err);
     EXPECT_LT(err, 0.05) << "r = " << r;
   }
@@ -147,33 +163,22 @@ TEST(PanRender, HalfSineImpactOnASphereMatchesTheExactTranslatingSphere) {
   // A sphere of radius 0.1 m (the B = C = 0.5 proxy scaled by beta = 0.2) hit along x: a half-sine
   // acceleration of 1 ms, rendered at 44.1 kHz through eq. (15) and the bank, against the exact
   // translating sphere driven by the same acceleration, at 1 m (docs/validation.md).
-  io::Config config(jobs::pan_schema());
-  config.set("proxies.list_m=[[0.5, 0.5]]");
-  config.set("grid.dx_m=0.03");
-  config.set("solve.fields=[1]");
-  const auto spec = jobs::make_pan_spec(config);
-  auto result = jobs::build_proxy(MPI_COMM_WORLD, spec, 0, {}, 0.0);
+  const SphereProxy sphere = sphere_proxy("pan_render_sphere.h5");
   if (!root()) return;
-  const auto proxy = through_file(spec, result.proxy, "pan_render_sphere.h5");
-  const auto field = jobs::proxy_field(jobs::pan_header(spec), proxy, 1);
-  const auto& p = spec.solve.problem;
+  const auto& p = sphere.spec.solve.problem;
   const double beta = 0.2, radius = 0.5 * beta, rate = 44100;
   kernels::pan::HalfSineAcceleration a;
   a.t0_s = 0.002;
   a.tau_s = 0.001;
   a.peak = {100.0, 0, 0, 0, 0, 0};  // m/s^2 along x
+  const HalfSine hs{a.peak[0], a.t0_s, a.tau_s};
   for (const std::array<double, 3> x : {std::array<double, 3>{0.6, 0.48, 0.64}, {-0.8, 0.0, 0.6}}) {
     std::vector<double> out(static_cast<std::size_t>(0.012 * rate), 0.0);
-    kernels::pan::render_impact({&field, nullptr, nullptr, nullptr, nullptr, nullptr}, beta, p.h_s, x, a, rate, 0.0, out);
-    const HalfSine hs{a.peak[0], a.t0_s, a.tau_s};
-    double num = 0, den = 0;
-    for (std::size_t n = 0; n < out.size(); ++n) {
-      const double want = reference::translating_sphere_pressure(radius, p.c_m_s, p.rho_kg_m3, 1.0, x[0], static_cast<double>(n) / rate,
-                                                                 half_sine_acceleration, &hs, a.t0_s, a.t0_s + a.tau_s, 8);
-      num += (out[n] - want) * (out[n] - want);
-      den += want * want;
-    }
-    const double err = std::sqrt(num / den);
+    kernels::pan::render_impact({&sphere.field, nullptr, nullptr, nullptr, nullptr, nullptr}, beta, p.h_s, x, a, rate, 0.0, out);
+    const double err = relative_l2(out, [&](std::size_t n) {
+      return reference::translating_sphere_pressure(radius, p.c_m_s, p.rho_kg_m3, 1.0, x[0], static_cast<double>(n) / rate,
+                                                    half_sine_acceleration, &hs, a.t0_s, a.t0_s + a.tau_s, 8);
+    });
     std::printf("half-sine impact on a sphere, listener (%.2f, %.2f, %.2f) at 1 m: relative L2 %.4f vs exact\n", x[0], x[1],
                 x[2], err);
     EXPECT_LT(err, 0.05);
@@ -235,15 +240,11 @@ TEST(Synth, SingleImpulseOnASphereMatchesTheExactTranslatingSphere) {
   const HalfSine hs{kernels::half_sine_peak(j, tau) / mass, e.t_s, tau};
   const double cos_theta = 0.6 * dir[0] + 0.48 * dir[1] + 0.64 * dir[2];
   const auto& p = spec.solve.problem;
-  double num = 0, den = 0;
-  for (std::size_t n = 0; n < out[0][0].size(); ++n) {
-    const double want = reference::translating_sphere_pressure(radius, p.c_m_s, p.rho_kg_m3, 1.0, cos_theta,
-                                                               static_cast<double>(n) / options.rate_hz, half_sine_acceleration,
-                                                               &hs, e.t_s, e.t_s + tau, 8);
-    num += (out[0][0][n] - want) * (out[0][0][n] - want);
-    den += want * want;
-  }
-  const double err = std::sqrt(num / den);
+  const double err = relative_l2(out[0][0], [&](std::size_t n) {
+    return reference::translating_sphere_pressure(radius, p.c_m_s, p.rho_kg_m3, 1.0, cos_theta,
+                                                  static_cast<double>(n) / options.rate_hz, half_sine_acceleration, &hs, e.t_s,
+                                                  e.t_s + tau, 8);
+  });
   std::printf("synth: sphere (r = 0.1 m, tau = %.3g ms) at 1 m: relative L2 %.4f vs the exact translating sphere\n",
               tau * 1e3, err);
   EXPECT_LT(err, 0.05);
