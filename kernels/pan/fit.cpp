@@ -65,9 +65,23 @@ void accumulate(const SparseTerms& terms, int n_terms, double radius_m, double w
   const double inv_r = 1.0 / radius_m;
   double power = weight * inv_r;
   for (int k = 0; k < n_terms; ++k, power *= inv_r) scale[static_cast<std::size_t>(k)] = power;
-  for (std::size_t e = 0; e < terms.index.size(); ++e) {
+  const std::size_t n_kept = terms.index.size(), size = coefficients.size();
+  if (n_terms == 2) {  // the default N: the same sums, unrolled (a quarter of the synthesizer's time is here)
+    const double s0 = scale[0], s1 = scale[1];
+    const float* v = terms.value.data();
+    for (std::size_t e = 0; e < n_kept; ++e) {
+      const std::size_t j = terms.index[e];
+      if (j >= size) break;
+      double s = 0;
+      s += s0 * v[2 * e];
+      s += s1 * v[2 * e + 1];
+      coefficients[j] += s;
+    }
+    return;
+  }
+  for (std::size_t e = 0; e < n_kept; ++e) {
     const std::size_t j = terms.index[e];
-    if (j >= coefficients.size()) break;  // Algorithm 1 dropped the finest levels (indices ascend)
+    if (j >= size) break;  // Algorithm 1 dropped the finest levels (indices ascend)
     double s = 0;
     for (int k = 0; k < n_terms; ++k)
       s += scale[static_cast<std::size_t>(k)] * terms.value[e * static_cast<std::size_t>(n_terms) + static_cast<std::size_t>(k)];

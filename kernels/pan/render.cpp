@@ -23,10 +23,17 @@ double gauss10(double lo, double hi, F f) {
   return s * half;
 }
 
-// Catmull-Rom cubic through q[j-1..j+2] at j + f (0 <= f < 1).
-inline double cubic(const double* q, double f) {
-  const double a = q[-1], b = q[0], c = q[1], d = q[2];
-  return b + 0.5 * f * (c - a + f * (2 * a - 5 * b + 4 * c - d + f * (3 * (b - c) + d - a)));
+// The Catmull-Rom cubic of each interval [j, j+1) of q (zero outside), as polynomial coefficients
+// in f = u - j: the mix evaluates each interval several times (once per basis weight), so the
+// coefficients are worth computing once. Entry 0 is the interval [-1, 0).
+void catmull_rom(const std::vector<double>& q, std::vector<std::array<double, 4>>& poly) {
+  const long n = static_cast<long>(q.size());
+  auto at = [&](long j) { return j >= 0 && j < n ? q[static_cast<std::size_t>(j)] : 0.0; };
+  poly.resize(static_cast<std::size_t>(n + 1));
+  for (long j = -1; j < n; ++j) {
+    const double a = at(j - 1), b = at(j), c = at(j + 1), d = at(j + 2);
+    poly[static_cast<std::size_t>(j + 1)] = {b, 0.5 * (c - a), 0.5 * (2 * a - 5 * b + 4 * c - d), 0.5 * (3 * (b - c) + d - a)};
+  }
 }
 
 }  // namespace
@@ -67,12 +74,9 @@ void render_impact(const std::array<const ProxyField*, 6>& fields, double beta, 
   const Series p = evaluate_sum(fields, a.peak, x_m, beta, rate_hz);
   const double step = beta * h_s;
   const PulseWeights w = half_sine_weights(a.t0_s, a.tau_s, step);
-  // The series with two zeros of padding on each side, so that the cubic needs no bounds checks.
-  thread_local std::vector<double> padded;
-  padded.assign(p.p.size() + 4, 0.0);
-  std::copy(p.p.begin(), p.p.end(), padded.begin() + 2);
-  const double* q0 = padded.data() + 2;
-  const long last = static_cast<long>(p.p.size());  // the cubic reaches q0[-1 .. last]
+  thread_local std::vector<std::array<double, 4>> poly;
+  catmull_rom(p.p, poly);
+  const long last = static_cast<long>(p.p.size());  // intervals [-1, 0) .. [last - 1, last)
   const double span_s = static_cast<double>(last + 1) * p.dt_s, du = 1.0 / (rate_hz * p.dt_s);
   for (std::size_t q = 0; q < w.z.size(); ++q) {  // each shifted, weighted copy of the series
     if (w.z[q] == 0) continue;
@@ -86,7 +90,9 @@ void render_impact(const std::array<const ProxyField*, 6>& fields, double beta, 
       if (!(u >= -1.0)) continue;                     // n_lo rounds down by at most a sample
       const long i = static_cast<long>(u + 1.0) - 1;  // floor for u >= -1, without a libm call
       if (i >= last) break;
-      out[static_cast<std::size_t>(n)] += z * cubic(q0 + i, u - static_cast<double>(i));
+      const auto& c = poly[static_cast<std::size_t>(i + 1)];
+      const double f = u - static_cast<double>(i);
+      out[static_cast<std::size_t>(n)] += z * (c[0] + f * (c[1] + f * (c[2] + f * c[3])));
     }
   }
 }
