@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/rotation.hpp"
 
 namespace clatter::io {
 namespace {
@@ -225,18 +226,11 @@ Scene read_impulse_text(const std::string& impulse_path, const std::string& side
       bad(e.where, "'" + kind + "': expected C (object-ground) or P (object pair)");
     }
     // World contact point from A's rest-pose point.
-    const auto& q = e.pose_a.orientation_wxyz;  // body -> world
-    const std::array<double, 3> u{q[1], q[2], q[3]};
-    const double w = q[0];
-    const auto cross = [](const std::array<double, 3>& x, const std::array<double, 3>& y) {
-      return std::array<double, 3>{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
-    };
-    const auto t = cross(u, rest_a);
-    const auto t2 = cross(u, std::array<double, 3>{2 * t[0], 2 * t[1], 2 * t[2]});
-    for (int k = 0; k < 3; ++k)  // v' = v + 2w (u x v) + u x (2 u x v)
-      e.point_m[static_cast<std::size_t>(k)] = rest_a[static_cast<std::size_t>(k)] + 2 * w * t[static_cast<std::size_t>(k)] +
-                                              t2[static_cast<std::size_t>(k)] + e.pose_a.position_m[static_cast<std::size_t>(k)];
-    for (int k = 0; k < 3; ++k) e.impulse_n_s[static_cast<std::size_t>(k)] = j * dir[static_cast<std::size_t>(k)];
+    const Vec3 turned = rotate(e.pose_a.orientation_wxyz, rest_a);
+    for (std::size_t k = 0; k < 3; ++k) {
+      e.point_m[k] = turned[k] + e.pose_a.position_m[k];
+      e.impulse_n_s[k] = j * dir[k];
+    }
     check_event(scene, e, previous);
     previous = e.t_s;
     scene.events.push_back(e);

@@ -11,16 +11,12 @@
 
 #include "core/errors.hpp"
 #include "jobs/pan_job.hpp"
+#include "jobs/run_options.hpp"
 
 namespace fs = std::filesystem;
 
 namespace clatter::jobs {
 namespace {
-
-std::string clock_text(double seconds) {
-  const long s = static_cast<long>(std::ceil(seconds));
-  return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);
-}
 
 struct Calibration {
   double rate = 0;            // cell-updates/s per rank, wall time of a whole solve (setup included)

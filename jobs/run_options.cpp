@@ -1,5 +1,10 @@
 #include "jobs/run_options.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
 #include "mpi/comm.hpp"
 
 namespace clatter::jobs {
@@ -40,6 +45,11 @@ std::vector<io::Key> medium_and_pulse_keys() {
       {"medium.rho_kg_m3", 1.2041, "density of the medium [kg/m^3]", {0.0, 1e5, true}},
       {"pulse.h_s", 1e-4, "width h of the acceleration pulse psi(t; h), support [-2h, 2h] [s]", {0.0, 1.0, true}},
   };
+}
+
+std::string clock_text(double seconds) {
+  const long s = static_cast<long>(std::ceil(std::max(seconds, 0.0)));
+  return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);
 }
 
 std::string command_line(int argc, char** argv) {

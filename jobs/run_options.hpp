@@ -36,4 +36,7 @@ std::vector<io::Key> medium_and_pulse_keys();
 // The command line as one string, for provenance.
 std::string command_line(int argc, char** argv);
 
+// H:MM:SS, rounded up (ETAs and time limits).
+std::string clock_text(double seconds);
+
 }  // namespace clatter::jobs

@@ -15,6 +15,7 @@
 #include "core/stage_log.hpp"
 #include "io/content_hash.hpp"
 #include "io/provenance.hpp"
+#include "jobs/run_options.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/groups.hpp"
 
@@ -112,11 +113,6 @@ class SharedCounters {
   long long* base_ = nullptr;
   MPI_Win win_ = MPI_WIN_NULL;
 };
-
-std::string clock_text(double seconds) {
-  const long s = static_cast<long>(seconds + 0.5);
-  return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);
-}
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 #include "kernels/contact.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace clatter::kernels {
@@ -16,7 +17,7 @@ double hertz_contact_time_s(double m, double r, const ElasticMaterial& a, const 
 
 double half_sine(double t, double t0, double tau) {
   if (t < t0 || t > t0 + tau) return 0.0;
-  return std::sin(3.14159265358979323846 * (t - t0) / tau);
+  return std::sin(std::numbers::pi * (t - t0) / tau);
 }
 
 }  // namespace clatter::kernels

@@ -3,6 +3,7 @@
 // Hertz contact gives the duration tau of an impact, and the contact force is the half-sine
 // S(t; t0, tau) of eq. (3) scaled so that it delivers the impulse J.
 #include <array>
+#include <numbers>
 
 namespace clatter::kernels {
 
@@ -21,6 +22,6 @@ double hertz_contact_time_s(double effective_mass_kg, double effective_radius_m,
 // S(t; t0, tau) of eq. (3): sin(pi (t - t0) / tau) on [t0, t0 + tau], else 0.
 double half_sine(double t_s, double t0_s, double tau_s);
 // The peak force of a half-sine contact delivering impulse J: integral of F_max S = 2 tau F_max / pi.
-inline double half_sine_peak(double impulse_n_s, double tau_s) { return 3.14159265358979323846 * impulse_n_s / (2 * tau_s); }
+inline double half_sine_peak(double impulse_n_s, double tau_s) { return std::numbers::pi * impulse_n_s / (2 * tau_s); }
 
 }  // namespace clatter::kernels

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -28,7 +29,7 @@ ProxyFit fit_proxy(const Mat3& inertia, double mass, double volume) {
   double a2 = f * (moment(1) + moment(2) - moment(0)), b2 = f * (moment(0) + moment(2) - moment(1)),
          c2 = f * (moment(0) + moment(1) - moment(2));
   c2 = std::max(c2, 1e-12 * a2);  // a flat piece: a thin ellipsoid, not a degenerate one
-  const double abc = std::sqrt(a2 * b2 * c2), k = std::cbrt(volume / (4.0 / 3.0 * 3.14159265358979323846 * abc));
+  const double abc = std::sqrt(a2 * b2 * c2), k = std::cbrt(volume / (4.0 / 3.0 * std::numbers::pi * abc));
   ProxyFit fit;
   fit.a_m = k * std::sqrt(a2);
   fit.b_m = k * std::sqrt(b2);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/rotation.hpp"
 #include "io/pan_bank.hpp"
 #include "io/scene.hpp"
 #include "kernels/pan/field.hpp"
@@ -45,21 +46,15 @@ class PanSource : public SoundSource {
   explicit PanSource(const std::string& bank_path);
   std::string name() const override { return "pan"; }
   void add(const Impact& impact, const Vec3& listener_world_m, int rate_hz, std::vector<double>& out) const override;
-  // The bank proxy for an object, and its scale.
-  std::size_t nearest_proxy(const kernels::ProxyFit& fit) const;
-  double h_s() const { return header_.h_s; }
-
  private:
+  std::size_t nearest_proxy(const kernels::ProxyFit& fit) const;  // closest (B, C) at the bank's A
+
   std::string path_;
   io::PanBankHeader header_;
   std::vector<io::PanProxy> proxies_;
   std::vector<std::array<kernels::pan::ProxyField, 6>> fields_;
   std::vector<std::array<bool, 6>> solved_;
 };
-
-// Rotations by a unit quaternion (w, x, y, z).
-Vec3 rotate(const std::array<double, 4>& q, const Vec3& v);
-Vec3 rotate_inverse(const std::array<double, 4>& q, const Vec3& v);
 
 // The field of one proxy as the evaluation library wants it (shared with clatter-bank).
 kernels::pan::ProxyField proxy_field(const io::PanBankHeader& header, const io::PanProxy& proxy, int field);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "kernels/contact.hpp"
@@ -43,7 +44,7 @@ PulseWeights half_sine_weights(double t0, double tau, double step) {
   PulseWeights out;
   out.k_first = static_cast<long>(std::floor(t0 / step)) - 1;
   const long k_last = static_cast<long>(std::ceil((t0 + tau) / step)) + 1;
-  const double impulse = 2 * tau / 3.14159265358979323846;  // integral of S
+  const double impulse = 2 * tau / std::numbers::pi;  // integral of S
   if (tau >= 2 * step) {
     // Resolved: interpolate (z_k = S(kH), error O((H/tau)^2)), rescaled so that the impulse is exact.
     double sum = 0;
