@@ -12,6 +12,12 @@ rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch" || exit 1
 fail() {
   echo "FAIL: $*"
   for f in clatter-pan*.out; do [[ -e $f ]] && { echo "== $f"; tail -20 "$f"; }; done
+  if [[ -n ${SLURM_CONF:-} ]]; then  # what Slurm thought, while it still runs
+    [[ -f queue.log ]] && { echo "== queue states polled (count, seconds, state)"; uniq -c -f1 queue.log | tail -20; }
+    echo "== squeue"; squeue -a -o '%i %T %r %S' 2>&1
+    echo "== sinfo"; sinfo -N -o '%N %T %E' 2>&1
+    echo "== slurmctld.log"; tail -25 "$cluster/slurmctld.log"
+  fi
   exit 1
 }
 cluster="$scratch/cluster"
@@ -55,14 +61,21 @@ done
 scancel --signal=TERM "${jid%%;*}" || fail "scancel --signal=TERM"
 # Until the requeued start has written the bank (the job leaves the queue for a moment while it
 # is requeued, so its absence proves nothing).
-nudged=0
+# Slurm holds a requeued job back for 2 minutes (StartTime = requeue + 121 s); a test need not
+# wait that long. But slurmd revokes the first start's credential, and a restart in the same
+# second as that revocation fails to launch and is held for good ("launch failed requeued
+# held"). So move the start time only once the node is idle again, and to 2 s from then.
 for _ in $(seq 480); do
   [[ -f requeue.h5 ]] && break
-  # Slurm holds a requeued job back for ~2 minutes; a test need not wait for that. Once: every
-  # update restarts the hold, so nudging on each poll would keep the job waiting.
-  if [[ $nudged -eq 0 ]] && squeue -h -j "${jid%%;*}" -o '%r' 2>/dev/null | grep -q BeginTime; then
-    scontrol update JobId="${jid%%;*}" StartTime=now && nudged=1
+  state=$(squeue -h -j "${jid%%;*}" -o '%T %r %S' 2>/dev/null)
+  node=$(sinfo -h -N -o %t 2>/dev/null)
+  echo "$SECONDS $state node $node" >> queue.log
+  start=${state##* }
+  if [[ $state == PENDING\ BeginTime* && $node == idle && $start == 20* ]] &&
+    (($(date -d "$start" +%s) > $(date +%s) + 5)); then
+    scontrol update JobId="${jid%%;*}" StartTime=now+2 >> queue.log 2>&1
   fi
+  [[ $state == *held* || $state == *Held* ]] && fail "the requeued job is held: $state"
   sleep 0.5
 done
 for _ in $(seq 60); do  # and until its output file is complete
