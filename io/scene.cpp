@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -57,6 +58,23 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
+// An object given by its shape: the mesh path (relative to the scene) and its density or mass;
+// synth::load_scene reads the mesh and computes the mass properties.
+void mesh_object(SceneObject& obj, const json& o, const std::string& w, const std::string& scene_path) {
+  for (const char* key : {"volume_m3", "inertia_kg_m2"})
+    if (o.contains(key)) bad(w + "." + key, "give either a mesh or volume_m3 and inertia_kg_m2, not both");
+  const json& m = o["mesh"];
+  if (!m.is_string() || m.get<std::string>().empty()) bad(w + ".mesh", m.dump() + ": expected the path of an OBJ file");
+  std::filesystem::path file = m.get<std::string>();
+  if (file.is_relative()) file = std::filesystem::path(scene_path).parent_path() / file;
+  obj.mesh_path = file.string();
+  if (o.contains("mass_kg") == o.contains("density_kg_m3")) bad(w, "an object with a mesh needs exactly one of mass_kg and density_kg_m3");
+  const std::string key = o.contains("mass_kg") ? "mass_kg" : "density_kg_m3";
+  const double given = number(o[key], w + "." + key);
+  if (!(given > 0)) bad(w + "." + key, fmt::format("{}: must be > 0", given));
+  (key == "mass_kg" ? obj.mass_kg : obj.density_kg_m3) = given;
+}
+
 // Everything but the events (shared by both input formats).
 Scene read_setting(const json& root, const std::string& path) {
   Scene scene;
@@ -86,13 +104,18 @@ Scene read_setting(const json& root, const std::string& path) {
     if (!id.is_number_integer() || id.get<int>() < 1) bad(w + ".id", id.dump() + ": must be an integer >= 1 (0 is the ground)");
     obj.id = id.get<int>();
     if (!ids.insert(obj.id).second) bad(w + ".id", fmt::format("{} is used twice", obj.id));
-    obj.mass_kg = number(need(o, "mass_kg", w), w + ".mass_kg");
-    if (!(obj.mass_kg > 0)) bad(w + ".mass_kg", fmt::format("{}: must be > 0", obj.mass_kg));
-    obj.volume_m3 = number(need(o, "volume_m3", w), w + ".volume_m3");
-    if (!(obj.volume_m3 > 0)) bad(w + ".volume_m3", fmt::format("{}: must be > 0", obj.volume_m3));
-    const json& inertia = need(o, "inertia_kg_m2", w);
-    if (!inertia.is_array() || inertia.size() != 3) bad(w + ".inertia_kg_m2", "expected a 3x3 array");
-    for (std::size_t r = 0; r < 3; ++r) obj.inertia_kg_m2[r] = vec<3>(inertia[r], fmt::format("{}.inertia_kg_m2[{}]", w, r));
+    obj.where = w;
+    if (o.contains("mesh"))
+      mesh_object(obj, o, w, path);
+    else {
+      obj.mass_kg = number(need(o, "mass_kg", w), w + ".mass_kg");
+      if (!(obj.mass_kg > 0)) bad(w + ".mass_kg", fmt::format("{}: must be > 0", obj.mass_kg));
+      obj.volume_m3 = number(need(o, "volume_m3", w), w + ".volume_m3");
+      if (!(obj.volume_m3 > 0)) bad(w + ".volume_m3", fmt::format("{}: must be > 0", obj.volume_m3));
+      const json& inertia = need(o, "inertia_kg_m2", w);
+      if (!inertia.is_array() || inertia.size() != 3) bad(w + ".inertia_kg_m2", "expected a 3x3 array");
+      for (std::size_t r = 0; r < 3; ++r) obj.inertia_kg_m2[r] = vec<3>(inertia[r], fmt::format("{}.inertia_kg_m2[{}]", w, r));
+    }
     const json& mat = need(o, "material", w);
     if (!mat.is_string() || !scene.materials.count(mat.get<std::string>())) bad(w + ".material", mat.dump() + " is not in materials");
     obj.material = mat.get<std::string>();
@@ -141,9 +164,10 @@ void check_event(const Scene& scene, const SceneEvent& e, double previous_t) {
 
 }  // namespace
 
-Scene read_scene(const std::string& path) {
+Scene read_scene(const std::string& path, bool read_events) {
   const json root = parse(path);
   Scene scene = read_setting(root, path);
+  if (!read_events) return scene;
   const json& events = need(root, "events", path);
   double previous = 0;
   for (std::size_t i = 0; i < events.size(); ++i) {
@@ -173,12 +197,11 @@ Scene read_scene(const std::string& path) {
   return scene;
 }
 
-Scene read_impulse_text(const std::string& impulse_path, const std::string& side_scene_path) {
-  Scene scene = read_setting(parse(side_scene_path), side_scene_path);
+void read_impulse_events(const std::string& impulse_path, Scene& scene) {
   std::ifstream in(impulse_path);
   if (!in) throw InputError(impulse_path + ": cannot open the impulse file");
   std::string line;
-  double previous = 0;
+  double previous = scene.events.empty() ? 0 : scene.events.back().t_s;
   for (int number_of_line = 1; std::getline(in, line); ++number_of_line) {
     std::istringstream s(line);
     std::string kind;
@@ -225,17 +248,19 @@ Scene read_impulse_text(const std::string& impulse_path, const std::string& side
     } else {
       bad(e.where, "'" + kind + "': expected C (object-ground) or P (object pair)");
     }
-    // World contact point from A's rest-pose point.
-    const Vec3 turned = rotate(e.pose_a.orientation_wxyz, rest_a);
+    check_event(scene, e, previous);
+    // World contact point from A's rest-pose point, taken about A's centre of mass.
+    Vec3 c{};
+    for (const auto& o : scene.objects)
+      if (o.id == e.a) c = o.rest_centre_m;
+    const Vec3 turned = rotate(e.pose_a.orientation_wxyz, Vec3{rest_a[0] - c[0], rest_a[1] - c[1], rest_a[2] - c[2]});
     for (std::size_t k = 0; k < 3; ++k) {
       e.point_m[k] = turned[k] + e.pose_a.position_m[k];
       e.impulse_n_s[k] = j * dir[k];
     }
-    check_event(scene, e, previous);
     previous = e.t_s;
     scene.events.push_back(e);
   }
-  return scene;
 }
 
 }  // namespace clatter::io

@@ -18,6 +18,14 @@ struct SceneObject {
   double mass_kg = 0, volume_m3 = 0;
   std::array<std::array<double, 3>, 3> inertia_kg_m2{};  // body frame, about the centre of mass
   std::string material;
+  // Given by a closed triangle mesh instead: its OBJ path, and the density unless mass_kg is
+  // given; synth::load_scene then fills in mass, volume, inertia and rest_centre_m.
+  std::string mesh_path;
+  double density_kg_m3 = 0;
+  // The centre of mass in the rest-pose coordinates (the mesh's; 0 for objects given by numbers),
+  // about which the James-lab format's rest-pose contact points are taken.
+  std::array<double, 3> rest_centre_m{};
+  std::string where;  // "FILE: objects[i]", for messages
   double created_s = 0, destroyed_s = std::numeric_limits<double>::infinity();
 };
 
@@ -46,10 +54,12 @@ struct Scene {
   double duration_s = 0;           // 0: until the last event's sound has died out
 };
 
-// Reads and validates a scene; InputError names the file, the JSON path and the value.
-Scene read_scene(const std::string& path);
-// Reads a James-lab rigid-body impulse file (one event per line, "C ..." or "P ...") with the
-// objects, materials and listeners of a side scene file; docs/scene-format.md.
-Scene read_impulse_text(const std::string& impulse_path, const std::string& side_scene_path);
+// Reads and validates a scene (without its events, for the side file of an impulse file);
+// InputError names the file, the JSON path and the value.
+Scene read_scene(const std::string& path, bool read_events = true);
+// Appends the events of a James-lab rigid-body impulse file (one event per line, "C ..." or
+// "P ...", docs/scene-format.md) to a scene read from its side file. Rest-pose contact points are
+// taken about each object's rest_centre_m, so objects given by meshes must be resolved first.
+void read_impulse_events(const std::string& impulse_path, Scene& scene);
 
 }  // namespace clatter::io

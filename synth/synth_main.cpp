@@ -11,8 +11,8 @@
 #include "core/build_info.hpp"
 #include "core/cleanup.hpp"
 #include "core/errors.hpp"
-#include "io/scene.hpp"
 #include "io/wav.hpp"
+#include "synth/load_scene.hpp"
 #include "synth/render_scene.hpp"
 
 using namespace clatter;
@@ -28,7 +28,7 @@ struct Options {
 int run(const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   if (o.rate_hz < 8000 || o.rate_hz > 384000) throw InputError(fmt::format("--rate {}: must be in [8000, 384000] Hz", o.rate_hz));
-  const io::Scene scene = o.impulses.empty() ? io::read_scene(o.scene) : io::read_impulse_text(o.impulses, o.scene);
+  const io::Scene scene = synth::load_scene(o.scene, o.impulses);
   const synth::PanSource pan(o.bank);
   synth::RenderOptions options;
   options.rate_hz = o.rate_hz;

@@ -3,6 +3,7 @@
 - linearity: a scene with two events renders to the sum of the scenes with each alone;
 - fracture debris: an object created at t0 is silent before t0 (its earlier event is skipped);
 - the James-lab impulse text format gives the same sound as the equivalent native scene;
+- an object given by a closed mesh sounds as one given by the mesh's closed-form mass properties;
 - bad input: exit 2, one error line naming the field, and no output file.
 Usage: synth_checks.py CLATTER_SYNTH BANK DEMO_SCENE SCRATCH"""
 import copy, json, math, os, shutil, subprocess, sys
@@ -117,6 +118,61 @@ if r.returncode == 0:
     err = np.abs(james - native).max() / np.abs(native).max()
     check(err < 1e-6, f"James-lab file = the native scene, max deviation {err:.2e} of the peak")
 
+# An object given by a closed mesh: a box, off the origin, wound counter-clockwise seen from
+# outside (its quads split by the reader), with a density. The reference object carries the box's
+# closed-form mass properties: V = a b c, I = m diag(b^2 + c^2, a^2 + c^2, a^2 + b^2) / 12.
+box_a, box_b, rho = 0.12, 0.08, 2600.0
+box_c = demo["objects"][0]["volume_m3"] / (box_a * box_b)
+off = [0.3, -0.2, 0.1]
+corners = [[off[0] + (k & 1) * box_a, off[1] + ((k >> 1) & 1) * box_b, off[2] + ((k >> 2) & 1) * box_c] for k in range(8)]
+centre = [off[0] + box_a / 2, off[1] + box_b / 2, off[2] + box_c / 2]
+quads = ["1 3 4 2", "5 6 8 7", "1 2 6 5", "3 7 8 4", "1 5 7 3", "2 4 8 6"]
+obj_text = "".join(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in corners)
+open("box.obj", "w").write(obj_text + "".join(f"f {q}\n" for q in quads))
+vol = box_a * box_b * box_c
+mass = rho * vol
+closed_form = copy.deepcopy(demo)
+closed_form["objects"][0].update(mass_kg=mass, volume_m3=vol, inertia_kg_m2=[
+    [mass * (box_b**2 + box_c**2) / 12, 0, 0], [0, mass * (box_a**2 + box_c**2) / 12, 0], [0, 0, mass * (box_a**2 + box_b**2) / 12]])
+meshed = copy.deepcopy(demo)
+o = meshed["objects"][0]
+for k in ("mass_kg", "volume_m3", "inertia_kg_m2"):
+    del o[k]
+o.update(mesh="box.obj", density_kg_m3=rho)
+ref = render(closed_form, "closed_form")
+got = render(meshed, "meshed")
+err = np.abs(got - ref).max() / np.abs(ref).max()
+check(err < 1e-6, f"an object given by its closed mesh = the box's closed-form mass properties, max deviation {err:.2e} of the peak")
+# The James-lab format with that mesh: rest-pose contact points are in the mesh's coordinates,
+# i.e. shifted by the box's centre of mass.
+shifted = []
+for line in lines[1:]:
+    f = line.split()
+    if f[2] == "1":  # object 1 is always A in the demo
+        f[3:6] = [f"{float(f[3 + k]) + centre[k]:.17g}" for k in range(3)]
+    shifted.append(" ".join(f))
+open("impulses-mesh.txt", "w").write("\n".join(shifted) + "\n")
+side_mesh = copy.deepcopy(meshed)
+side_mesh["events"] = []
+json.dump(side_mesh, open("side-mesh.json", "w"))
+r = subprocess.run([synth, "-i", "side-mesh.json", "--impulses", "impulses-mesh.txt", "-b", bank, "-o", "james-mesh.wav"], capture_output=True, text=True)
+check(r.returncode == 0, f"James-lab impulses with a mesh object render (exit {r.returncode}) {r.stderr.strip()}")
+if r.returncode == 0:
+    err = np.abs(wav("james-mesh.wav") - ref).max() / np.abs(ref).max()
+    check(err < 1e-6, f"James-lab file, contact points in mesh coordinates = the closed-form scene, max deviation {err:.2e} of the peak")
+open("open.obj", "w").write(obj_text + "".join(f"f {q}\n" for q in quads[:5]))
+open("inward.obj", "w").write(obj_text + "".join(f"f {' '.join(reversed(q.split()))}\n" for q in quads))
+
+
+def mesh_object(**fields):
+    def f(s):
+        o = s["objects"][0]
+        for k in ("mass_kg", "volume_m3", "inertia_kg_m2"):
+            del o[k]
+        o.update(fields)
+    return f
+
+
 # Bad input: (mutation, fragments the error line must contain).
 def mutate(f):
     s = copy.deepcopy(demo)
@@ -133,6 +189,11 @@ cases = [
     ("events out of time order", mutate(lambda s: s["events"][5].update(t_s=0.0)), ["events[5]", "time order"]),
     ("wrong scene version", mutate(lambda s: s.update(format_version=7)), ["format_version", "7"]),
     ("unknown material", mutate(lambda s: s["objects"][2].update(material="unobtainium")), ["objects[2].material", "unobtainium"]),
+    ("open mesh", mutate(mesh_object(mesh="open.obj", density_kg_m3=rho)), ["open.obj:", "not closed"]),
+    ("mesh turned inside out", mutate(mesh_object(mesh="inward.obj", mass_kg=1.0)), ["objects[0].mesh", "counter-clockwise"]),
+    ("missing mesh file", mutate(mesh_object(mesh="nowhere.obj", mass_kg=1.0)), ["nowhere.obj", "cannot open"]),
+    ("mesh and inertia both", mutate(lambda s: s["objects"][0].update(mesh="box.obj")), ["objects[0].volume_m3", "not both"]),
+    ("mesh without mass or density", mutate(mesh_object(mesh="box.obj")), ["objects[0]", "density_kg_m3"]),
 ]
 for name, scene, fragments in cases:
     r, _ = run(scene, "bad")

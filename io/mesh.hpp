@@ -1,0 +1,21 @@
+#pragma once
+// A closed triangle mesh read from a Wavefront OBJ file, for objects given by their shape.
+#include <array>
+#include <string>
+#include <vector>
+
+namespace clatter::io {
+
+struct TriangleMesh {
+  std::vector<std::array<double, 3>> vertices_m;
+  std::vector<std::array<int, 3>> triangles;  // 0-based vertex indices
+};
+
+// Reads "v x y z" and "f a b c ..." records (a, a/t, a//n or a/t/n; negative indices count back
+// from the latest vertex; polygons are split into fans); every other record is ignored. Checks that
+// the mesh can bound a solid: finite coordinates, indices in range, no repeated corner, and every
+// edge shared by exactly two faces that run along it in opposite directions (closed, manifold,
+// consistently oriented). Self-intersection is not checked. InputError names the file and line.
+TriangleMesh read_obj(const std::string& path);
+
+}  // namespace clatter::io
