@@ -8,11 +8,9 @@
 namespace clatter::synth {
 
 // impulses_path empty: scene_path is a native scene. Otherwise scene_path is the side file of a
-// James-lab impulse file (docs/scene-format.md). InputError names the file and field or line.
+// James-lab impulse file (docs/scene-format.md). An object given by a mesh gets the mass, volume,
+// inertia (about the centre of mass, in the mesh's axes) and rest_centre_m of the uniform solid it
+// bounds. InputError names the file and field or line.
 io::Scene load_scene(const std::string& scene_path, const std::string& impulses_path = "");
-
-// An object given by its mesh: reads the OBJ and sets mass, volume, inertia (about the centre of
-// mass, in the mesh's axes) and rest_centre_m from the uniform solid it bounds.
-void resolve_mesh_object(io::SceneObject& object);
 
 }  // namespace clatter::synth

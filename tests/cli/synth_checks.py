@@ -106,17 +106,24 @@ for e in demo["events"]:
     else:
         lines.append(f"P {e['t_s']:.17g} {e['a']} {body(e['pose_a'], e['point_m'])} {e['b']} {body(e['pose_b'], e['point_m'])} "
                      f"{e['normal_speed_m_s']:.17g} {j:.17g} " + " ".join(f"{v:.17g}" for v in n))
-open("impulses.txt", "w").write("\n".join(lines) + "\n")
+
+
+def render_james(scene, impulse_lines, name, reference, what):
+    """Renders impulse_lines with scene as the side file (its events dropped) against reference."""
+    side = copy.deepcopy(scene)
+    side["events"] = []
+    json.dump(side, open(name + "-side.json", "w"))
+    open(name + ".txt", "w").write("\n".join(impulse_lines) + "\n")
+    r = subprocess.run([synth, "-i", name + "-side.json", "--impulses", name + ".txt", "-b", bank, "-o", name + ".wav"],
+                       capture_output=True, text=True)
+    check(r.returncode == 0, f"{what}: renders (exit {r.returncode}) {r.stderr.strip()}")
+    if r.returncode == 0:
+        err = np.abs(wav(name + ".wav") - reference).max() / np.abs(reference).max()
+        check(err < 1e-6, f"{what} = the native scene, max deviation {err:.2e} of the peak")
+
+
 native = render(demo, "native")
-side = copy.deepcopy(demo)
-side["events"] = []
-json.dump(side, open("side.json", "w"))
-r = subprocess.run([synth, "-i", "side.json", "--impulses", "impulses.txt", "-b", bank, "-o", "james.wav"], capture_output=True, text=True)
-check(r.returncode == 0, f"James-lab impulse file renders (exit {r.returncode}) {r.stderr.strip()}")
-if r.returncode == 0:
-    james = wav("james.wav")
-    err = np.abs(james - native).max() / np.abs(native).max()
-    check(err < 1e-6, f"James-lab file = the native scene, max deviation {err:.2e} of the peak")
+render_james(demo, lines, "james", native, "James-lab impulse file")
 
 # An object given by a closed mesh: a box, off the origin, wound counter-clockwise seen from
 # outside (its quads split by the reader), with a density. The reference object carries the box's
@@ -146,20 +153,12 @@ check(err < 1e-6, f"an object given by its closed mesh = the box's closed-form m
 # The James-lab format with that mesh: rest-pose contact points are in the mesh's coordinates,
 # i.e. shifted by the box's centre of mass.
 shifted = []
-for line in lines[1:]:
+for line in lines[1:]:  # the demo's events as above
     f = line.split()
     if f[2] == "1":  # object 1 is always A in the demo
         f[3:6] = [f"{float(f[3 + k]) + centre[k]:.17g}" for k in range(3)]
     shifted.append(" ".join(f))
-open("impulses-mesh.txt", "w").write("\n".join(shifted) + "\n")
-side_mesh = copy.deepcopy(meshed)
-side_mesh["events"] = []
-json.dump(side_mesh, open("side-mesh.json", "w"))
-r = subprocess.run([synth, "-i", "side-mesh.json", "--impulses", "impulses-mesh.txt", "-b", bank, "-o", "james-mesh.wav"], capture_output=True, text=True)
-check(r.returncode == 0, f"James-lab impulses with a mesh object render (exit {r.returncode}) {r.stderr.strip()}")
-if r.returncode == 0:
-    err = np.abs(wav("james-mesh.wav") - ref).max() / np.abs(ref).max()
-    check(err < 1e-6, f"James-lab file, contact points in mesh coordinates = the closed-form scene, max deviation {err:.2e} of the peak")
+render_james(meshed, shifted, "james-mesh", ref, "James-lab file, contact points in mesh coordinates")
 open("open.obj", "w").write(obj_text + "".join(f"f {q}\n" for q in quads[:5]))
 open("inward.obj", "w").write(obj_text + "".join(f"f {' '.join(reversed(q.split()))}\n" for q in quads))
 
@@ -202,7 +201,7 @@ for name, scene, fragments in cases:
     check(ok, f"bad input, {name}: exit {r.returncode}, {lines[0] if lines else r.stderr.strip()}")
 # NaN in the text format, a bank of another version.
 open("nan.txt", "w").write("C 0.1 1 0 0 0 0 0 0.1 1 0 0 0 nan 0.01 0 0 1\n")
-r = subprocess.run([synth, "-i", "side.json", "--impulses", "nan.txt", "-b", bank, "-o", "nan.wav"], capture_output=True, text=True)
+r = subprocess.run([synth, "-i", "james-side.json", "--impulses", "nan.txt", "-b", bank, "-o", "nan.wav"], capture_output=True, text=True)
 check(r.returncode == 2 and "nan.txt:1" in r.stderr and "nan: must be finite" in r.stderr and not os.path.exists("nan.wav"), f"bad input, NaN: exit {r.returncode}, {r.stderr.strip()}")
 import h5py
 shutil.copy(bank, "old.h5")
