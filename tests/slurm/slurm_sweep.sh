@@ -62,9 +62,10 @@ scancel --signal=TERM "${jid%%;*}" || fail "scancel --signal=TERM"
 # Until the requeued start has written the bank (the job leaves the queue for a moment while it
 # is requeued, so its absence proves nothing).
 # Slurm holds a requeued job back for 2 minutes (StartTime = requeue + 121 s); a test need not
-# wait that long. But slurmd revokes the first start's credential, and a restart in the same
-# second as that revocation fails to launch and is held for good ("launch failed requeued
-# held"). So move the start time only once the node is idle again, and to 2 s from then.
+# wait that long. But slurmd revokes the first start's credential (in whole seconds), and a
+# restart within the second of that revocation can fail to launch, which holds the job for good
+# ("launch failed requeued held"; the likely cause of a CI failure that nudged to `now`). So move
+# the start time only once the node is idle again, and to 2 s from then.
 for _ in $(seq 480); do
   [[ -f requeue.h5 ]] && break
   state=$(squeue -h -j "${jid%%;*}" -o '%T %r %S' 2>/dev/null)
