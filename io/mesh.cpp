@@ -2,13 +2,13 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "io/text_number.hpp"
 
 namespace clatter::io {
 
@@ -28,10 +28,7 @@ TriangleMesh read_obj(const std::string& path) {
       for (auto& x : v) {
         std::string token;
         if (!(s >> token)) throw InputError(where + ": a vertex needs 3 coordinates");
-        char* end = nullptr;
-        x = std::strtod(token.c_str(), &end);
-        if (end == token.c_str() || *end != 0) throw InputError(fmt::format("{}: vertex coordinate '{}' is not a number", where, token));
-        if (!std::isfinite(x)) throw InputError(fmt::format("{}: vertex coordinate {}: must be finite", where, token));
+        x = finite_number(token, "vertex coordinate", where);
       }
       mesh.vertices_m.push_back(v);
     } else if (kind == "f") {

@@ -3,15 +3,16 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include "core/errors.hpp"
 #include "core/rotation.hpp"
+#include "io/text_number.hpp"
 
 namespace clatter::io {
 namespace {
@@ -145,19 +146,23 @@ json parse(const std::string& path) {
   }
 }
 
-// Checks one event against the scene and the previous event (events must come in time order:
-// a simulator that emits them otherwise has a bug worth hearing about).
-void check_event(const Scene& scene, const SceneEvent& e, double previous_t) {
-  auto known = [&](int id) {
-    for (const auto& o : scene.objects)
-      if (o.id == id) return true;
-    return false;
-  };
+// Object id -> its index in scene.objects, built once per file: scenes have ~1e3 objects and
+// ~1e5 events, and each event looks its objects up.
+using ObjectIndex = std::map<int, std::size_t>;
+ObjectIndex index_objects(const Scene& scene) {
+  ObjectIndex index;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) index[scene.objects[i].id] = i;
+  return index;
+}
+
+// Checks one event against the scene's objects and the previous event (events must come in time
+// order: a simulator that emits them otherwise has a bug worth hearing about).
+void check_event(const ObjectIndex& objects, const SceneEvent& e, double previous_t) {
   if (!(e.t_s >= 0)) bad(e.where, fmt::format("time {} s: must be >= 0", e.t_s));
   if (e.t_s < previous_t)
     bad(e.where, fmt::format("time {} s is before the previous event's {} s: events must be in time order", e.t_s, previous_t));
-  if (!known(e.a)) bad(e.where, fmt::format("object {} is not in the scene's objects", e.a));
-  if (e.b != 0 && !known(e.b)) bad(e.where, fmt::format("object {} is not in the scene's objects", e.b));
+  if (!objects.count(e.a)) bad(e.where, fmt::format("object {} is not in the scene's objects", e.a));
+  if (e.b != 0 && !objects.count(e.b)) bad(e.where, fmt::format("object {} is not in the scene's objects", e.b));
   if (e.b == e.a) bad(e.where, fmt::format("object {} collides with itself", e.a));
   if (!(e.normal_speed_m_s > 0)) bad(e.where, fmt::format("normal speed {} m/s: must be > 0", e.normal_speed_m_s));
 }
@@ -168,6 +173,7 @@ Scene read_scene(const std::string& path, bool read_events) {
   const json root = parse(path);
   Scene scene = read_setting(root, path);
   if (!read_events) return scene;
+  const ObjectIndex objects = index_objects(scene);
   const json& events = need(root, "events", path);
   double previous = 0;
   for (std::size_t i = 0; i < events.size(); ++i) {
@@ -190,7 +196,7 @@ Scene read_scene(const std::string& path, bool read_events) {
     e.normal_speed_m_s = number(need(j, "normal_speed_m_s", e.where), e.where + ".normal_speed_m_s");
     e.pose_a = pose(need(j, "pose_a", e.where), e.where + ".pose_a");
     if (e.b != 0) e.pose_b = pose(need(j, "pose_b", e.where), e.where + ".pose_b");
-    check_event(scene, e, previous);
+    check_event(objects, e, previous);
     previous = e.t_s;
     scene.events.push_back(e);
   }
@@ -200,6 +206,7 @@ Scene read_scene(const std::string& path, bool read_events) {
 void read_impulse_events(const std::string& impulse_path, Scene& scene) {
   std::ifstream in(impulse_path);
   if (!in) throw InputError(impulse_path + ": cannot open the impulse file");
+  const ObjectIndex objects = index_objects(scene);
   std::string line;
   double previous = scene.events.empty() ? 0 : scene.events.back().t_s;
   for (int number_of_line = 1; std::getline(in, line); ++number_of_line) {
@@ -208,15 +215,10 @@ void read_impulse_events(const std::string& impulse_path, Scene& scene) {
     if (!(s >> kind) || kind[0] == '#') continue;
     SceneEvent e;
     e.where = fmt::format("{}:{}", impulse_path, number_of_line);
-    // Numbers through strtod, so "nan" and "inf" are read and then refused by name.
     auto next = [&](const char* what) {
       std::string token;
       if (!(s >> token)) bad(e.where, std::string("missing ") + what);
-      char* end = nullptr;
-      const double v = std::strtod(token.c_str(), &end);
-      if (end == token.c_str() || *end != 0) bad(e.where, fmt::format("{} '{}' is not a number", what, token));
-      if (!std::isfinite(v)) bad(e.where, fmt::format("{} is {}: must be finite", what, token));
-      return v;
+      return finite_number(token, what, e.where);
     };
     auto next_id = [&](const char* what) {
       const double v = next(what);
@@ -248,11 +250,9 @@ void read_impulse_events(const std::string& impulse_path, Scene& scene) {
     } else {
       bad(e.where, "'" + kind + "': expected C (object-ground) or P (object pair)");
     }
-    check_event(scene, e, previous);
+    check_event(objects, e, previous);
     // World contact point from A's rest-pose point, taken about A's centre of mass.
-    Vec3 c{};
-    for (const auto& o : scene.objects)
-      if (o.id == e.a) c = o.rest_centre_m;
+    const Vec3& c = scene.objects[objects.at(e.a)].rest_centre_m;
     const Vec3 turned = rotate(e.pose_a.orientation_wxyz, Vec3{rest_a[0] - c[0], rest_a[1] - c[1], rest_a[2] - c[2]});
     for (std::size_t k = 0; k < 3; ++k) {
       e.point_m[k] = turned[k] + e.pose_a.position_m[k];

@@ -125,6 +125,22 @@ def render_james(scene, impulse_lines, name, reference, what):
 native = render(demo, "native")
 render_james(demo, lines, "james", native, "James-lab impulse file")
 
+
+def mutate(f):  # a changed copy of the demo scene
+    s = copy.deepcopy(demo)
+    f(s)
+    return s
+
+
+def mesh_object(**fields):  # object 1 given by a mesh and fields instead of its numbers
+    def f(s):
+        o = s["objects"][0]
+        for k in ("mass_kg", "volume_m3", "inertia_kg_m2"):
+            del o[k]
+        o.update(fields)
+    return f
+
+
 # An object given by a closed mesh: a box, off the origin, wound counter-clockwise seen from
 # outside (its quads split by the reader), with a density. The reference object carries the box's
 # closed-form mass properties: V = a b c, I = m diag(b^2 + c^2, a^2 + c^2, a^2 + b^2) / 12.
@@ -141,11 +157,7 @@ mass = rho * vol
 closed_form = copy.deepcopy(demo)
 closed_form["objects"][0].update(mass_kg=mass, volume_m3=vol, inertia_kg_m2=[
     [mass * (box_b**2 + box_c**2) / 12, 0, 0], [0, mass * (box_a**2 + box_c**2) / 12, 0], [0, 0, mass * (box_a**2 + box_b**2) / 12]])
-meshed = copy.deepcopy(demo)
-o = meshed["objects"][0]
-for k in ("mass_kg", "volume_m3", "inertia_kg_m2"):
-    del o[k]
-o.update(mesh="box.obj", density_kg_m3=rho)
+meshed = mutate(mesh_object(mesh="box.obj", density_kg_m3=rho))
 ref = render(closed_form, "closed_form")
 got = render(meshed, "meshed")
 err = np.abs(got - ref).max() / np.abs(ref).max()
@@ -162,23 +174,7 @@ render_james(meshed, shifted, "james-mesh", ref, "James-lab file, contact points
 open("open.obj", "w").write(obj_text + "".join(f"f {q}\n" for q in quads[:5]))
 open("inward.obj", "w").write(obj_text + "".join(f"f {' '.join(reversed(q.split()))}\n" for q in quads))
 
-
-def mesh_object(**fields):
-    def f(s):
-        o = s["objects"][0]
-        for k in ("mass_kg", "volume_m3", "inertia_kg_m2"):
-            del o[k]
-        o.update(fields)
-    return f
-
-
 # Bad input: (mutation, fragments the error line must contain).
-def mutate(f):
-    s = copy.deepcopy(demo)
-    f(s)
-    return s
-
-
 cases = [
     ("unknown object id", mutate(lambda s: s["events"][2].update(a=42)), ["events[2]", "object 42"]),
     ("non-symmetric inertia", mutate(lambda s: s["objects"][1]["inertia_kg_m2"][0].__setitem__(1, 1e-3)), ["object 2", "not symmetric"]),
