@@ -3,12 +3,19 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
 
 #include "core/errors.hpp"
+#include "io/content_hash.hpp"
 #include "io/h5.hpp"
 #include "io/pan_bank.hpp"
+#include "jobs/command.hpp"
 #include "jobs/pan_job.hpp"
+#include "mpi/comm.hpp"
 
 namespace clatter::jobs {
 
@@ -78,6 +85,59 @@ std::string probe_csv(const ProbeRequest& r) {
   for (std::size_t n = 0; n < s.p.size(); ++n)
     out += fmt::format("{:.9g},{:.9g}\n", s.t0_s + static_cast<double>(n) * s.dt_s, s.p[n]);
   return out;
+}
+
+
+namespace {
+
+// Serial work that every rank does (so all agree on errors) and rank 0 prints.
+int print_on_root(const JobContext& context, const std::function<std::string()>& make_text) {
+  std::string text;
+  mpi::agree(context.world, [&] { text = make_text(); });
+  if (context.is_root) std::fputs(text.c_str(), stdout);
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_checksum_command(CLI::App& parent) {
+  auto* app = parent.add_subcommand("checksum", "print a content hash of a Clatter HDF5 file that leaves out "
+                                                "/provenance/run (who ran it, when, on how many ranks)");
+  auto path = std::make_shared<std::string>();
+  app->add_option("file", *path, "HDF5 file")->required();
+  return {app, [path](const JobContext& context) -> int {
+            return print_on_root(context, [&] {
+              auto file = io::File::open(*path);
+              return io::hash_hex(io::content_hash(file, {{"/provenance/run"}, {}})) + "  " + *path + "\n";
+            });
+          }};
+}
+
+Command add_info_command(CLI::App& parent) {
+  auto* app = parent.add_subcommand("info", "describe a PAN bank: proxies, fields, epsilon, size, provenance");
+  auto path = std::make_shared<std::string>();
+  app->add_option("bank", *path, "PAN bank file")->required();
+  return {app, [path](const JobContext& context) -> int { return print_on_root(context, [&] { return bank_info(*path); }); }};
+}
+
+Command add_probe_command(CLI::App& parent) {
+  auto* app = parent.add_subcommand("probe", "print p_i(x, t) of one proxy from a PAN bank as t_s,p_Pa CSV");
+  auto request = std::make_shared<ProbeRequest>();
+  ProbeRequest& r = *request;
+  app->add_option("bank", r.bank_path, "PAN bank file")->required();
+  app->add_option("--proxy", r.proxy_bc_m, "proxy semi-axes B,C [m]")->delimiter(',')->required();
+  app->add_option("--field", r.field, "rigid-body field 1-6")->required();
+  app->add_option("--point", r.point_m, "listener x,y,z [m], proxy centred on the origin")->delimiter(',')->required();
+  app->add_option("--rate", r.rate_hz, "output sample rate [Hz]: reconstruct within 2x of it (Algorithm 1); "
+                                       "0: the bank's rate")
+      ->capture_default_str();
+  app->add_option("--scale", r.scale, "beta: the proxy scaled by beta (eq. 10)")->capture_default_str();
+  app->add_option("--interpolation", r.interpolation, "between directions: quadratic (default) or linear (the paper's)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, kernels::pan::Interpolation>{
+          {"linear", kernels::pan::Interpolation::linear}, {"quadratic", kernels::pan::Interpolation::quadratic}}));
+  return {app, [request](const JobContext& context) -> int {
+            return print_on_root(context, [&] { return probe_csv(*request); });
+          }};
 }
 
 }  // namespace clatter::jobs

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "core/stage_log.hpp"
 #include "io/h5.hpp"
 #include "io/provenance.hpp"
+#include "jobs/command.hpp"
 #include "jobs/run_options.hpp"
 #include "kernels/pulse.hpp"
 #include "mpi/cart.hpp"
@@ -97,6 +99,22 @@ void run_field(MPI_Comm comm, const io::Config& config, const std::string& out_p
   }
   spdlog::info("field: wrote {} ({}^3 float32, {:.2f} MiB)", out_path, n,
                double(n) * n * n * sizeof(float) / (1024.0 * 1024.0));
+}
+
+
+Command add_field_command(CLI::App& parent) {
+  auto* app = parent.add_subcommand("field", "sample the exact pressure of a psi-driven monopole on a distributed grid "
+                                             "and write it with collective HDF5 (the foundation demo)");
+  auto options = std::make_shared<JobOptions>();
+  options->out = "field.h5";
+  add_job_options(*app, *options, "output HDF5 file", false);
+  return {app, [options](const JobContext& context) -> int {
+            const auto config = job_config(context.world, field_schema(), *options);
+            if (!config) return kExitOk;
+            Stage stage("field");
+            run_field(context.world, *config, options->out, context.command_line);
+            return kExitOk;
+          }};
 }
 
 }  // namespace clatter::jobs

@@ -4,12 +4,15 @@
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
+#include <memory>
 
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/stage_log.hpp"
 #include "io/pan_bank.hpp"
+#include "jobs/command.hpp"
 #include "jobs/pan_job.hpp"
+#include "jobs/run_options.hpp"
 #include "jobs/sweep.hpp"
 #include "kernels/pan/directions.hpp"
 #include "mpi/comm.hpp"
@@ -116,6 +119,44 @@ int run_pan_merge(MPI_Comm world, const std::string& results_dir, const std::str
     spec = make_pan_spec(config);
   });
   return merge_and_write(world, spec, results_dir, config_toml, out, command);
+}
+
+
+Command add_pan_command(CLI::App& parent) {
+  auto* app = parent.add_subcommand("pan", "build a PAN proxy bank: FDTD solves over the (B, C) proxies, wavelet fit, "
+                                           "compression (docs/bank-format.md)");
+  auto options = std::make_shared<JobOptions>();
+  auto sweep = std::make_shared<PanSweepOptions>();
+  options->out = "bank.h5";
+  add_job_options(*app, *options, "output PAN bank", true);
+  app->add_option("--results", sweep->results, "folder of per-task result files (default: OUT.tasks)");
+  app->add_option("--ranks-per-task", sweep->ranks_per_task, "MPI ranks that solve one task together (divides the "
+                                                             "rank count)")
+      ->capture_default_str();
+  app->add_flag("--resume", sweep->resume, "keep the verified finished tasks in --results and do the rest");
+  app->add_option("--slice", sweep->slice, "K/N: only tasks t with t % N == K, no merge (Slurm job arrays)");
+  app->add_flag("--keep-results", sweep->keep_results, "keep the task files after a complete merge");
+  return {app, [options, sweep](const JobContext& context) -> int {
+            const auto config = job_config(context.world, pan_schema(), *options);
+            if (!config) return kExitOk;
+            Stage stage("pan");
+            sweep->out = options->out;
+            sweep->progress_interval_s = options->progress_interval_s;
+            sweep->command = context.command_line;
+            return run_pan_sweep(context.world, *config, *sweep);
+          }};
+}
+
+Command add_merge_command(CLI::App& parent) {
+  auto* app = parent.add_subcommand("merge", "merge a sweep's results folder into a PAN bank (after job array slices)");
+  auto results = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>("bank.h5");
+  app->add_option("--results", *results, "the sweep's results folder")->required();
+  app->add_option("-o,--out", *out, "output PAN bank")->capture_default_str();
+  return {app, [results, out](const JobContext& context) -> int {
+            Stage stage("merge");
+            return run_pan_merge(context.world, *results, *out, context.command_line);
+          }};
 }
 
 }  // namespace clatter::jobs

@@ -5,13 +5,17 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <thread>
 
 #include "core/errors.hpp"
+#include "jobs/command.hpp"
 #include "jobs/pan_job.hpp"
 #include "jobs/run_options.hpp"
+#include "mpi/comm.hpp"
 
 namespace fs = std::filesystem;
 
@@ -166,6 +170,38 @@ srun --mpi=pmix {} merge --results {} --out {}
     }
   }
   return out;
+}
+
+
+Command add_plan_command(CLI::App& parent) {
+  auto* app = parent.add_subcommand("plan", "predict a PAN sweep's cost (tasks, cells x steps, memory per rank, wall "
+                                            "time from a calibration solve run here) and write Slurm batch scripts");
+  auto options = std::make_shared<JobOptions>();
+  auto plan = std::make_shared<PlanOptions>();
+  options->out = "bank.h5";
+  add_job_options(*app, *options, "the bank the job will write", false);
+  app->add_option("--ranks", plan->ranks, "MPI ranks of the job")->capture_default_str();
+  app->add_option("--ranks-per-task", plan->ranks_per_task, "ranks per task")->capture_default_str();
+  app->add_option("--cores-per-node", plan->cores_per_node, "cores per node (default: this machine's)");
+  app->add_option("--rate", plan->rate, "cell-updates/s per rank instead of measuring (e.g. from a stage table)");
+  app->add_option("--results", plan->results, "results folder of the job (default: OUT.tasks)");
+  app->add_option("--sbatch", plan->sbatch, "write a ready sbatch script here");
+  app->add_option("--array", plan->array, "with --sbatch: a job array of N elements and a merge job (FILE.merge)");
+  return {app, [options, plan](const JobContext& context) -> int {
+            const auto config = job_config(context.world, pan_schema(), *options);
+            if (!config) return kExitOk;
+            // The scripts run elsewhere and later: every path in them is absolute.
+            plan->config_path = options->config_path.empty() ? "" : fs::absolute(options->config_path).string();
+            plan->out = fs::absolute(options->out).string();
+            if (!plan->results.empty()) plan->results = fs::absolute(plan->results).string();
+            plan->binary = fs::canonical("/proc/self/exe").string();
+            std::string text;
+            mpi::agree(context.world, [&] {
+              if (context.is_root) text = run_plan(*config, *plan);
+            });
+            if (context.is_root) std::fputs(text.c_str(), stdout);
+            return kExitOk;
+          }};
 }
 
 }  // namespace clatter::jobs

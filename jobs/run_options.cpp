@@ -4,17 +4,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "mpi/comm.hpp"
 
 namespace clatter::jobs {
 
-void add_config_options(CLI::App& sub, ConfigOptions& options) {
-  sub.add_option("-c,--config", options.path, "TOML config file (default: the built-in config; see --print-config)");
+void add_job_options(CLI::App& sub, JobOptions& options, const char* out_help, bool progress) {
+  sub.add_option("-c,--config", options.config_path, "TOML config file (default: the built-in config; see --print-config)");
   sub.add_option("--set", options.sets, "override one config key, e.g. --set grid.n_cells=128 (repeatable)")
       ->type_name("SECTION.KEY=VALUE")
       ->allow_extra_args(false);
-  sub.add_flag("--print-config", options.print, "print the effective config as TOML and exit");
+  sub.add_flag("--print-config", options.print_config, "print the effective config as TOML and exit");
+  sub.add_option("-o,--out", options.out, out_help)->capture_default_str();
+  if (progress)
+    sub.add_option("--progress-interval", options.progress_interval_s, "seconds between progress lines (0: none)")
+        ->capture_default_str();
 }
 
 void add_global_options(CLI::App& app, GlobalOptions& options) {
@@ -25,18 +30,25 @@ void add_global_options(CLI::App& app, GlobalOptions& options) {
       ->capture_default_str();
 }
 
-io::Config load_config(MPI_Comm comm, const io::Schema& schema, const ConfigOptions& options) {
+io::Config load_config(MPI_Comm comm, const io::Schema& schema, const JobOptions& options) {
   std::string text;
   mpi::agree(comm, [&] {
-    if (mpi::rank(comm) == 0 && !options.path.empty()) text = io::read_text_file(options.path);
+    if (mpi::rank(comm) == 0 && !options.config_path.empty()) text = io::read_text_file(options.config_path);
   });
   text = mpi::broadcast(comm, text);
   io::Config config(schema);
   mpi::agree(comm, [&] {
-    if (!options.path.empty()) config.merge_toml(text, options.path);
+    if (!options.config_path.empty()) config.merge_toml(text, options.config_path);
     for (const auto& s : options.sets) config.set(s);
   });
   return config;
+}
+
+std::optional<io::Config> job_config(MPI_Comm comm, const io::Schema& schema, const JobOptions& options) {
+  auto config = load_config(comm, schema, options);
+  if (!options.print_config) return config;
+  if (mpi::rank(comm) == 0) std::fputs(config.to_toml().c_str(), stdout);
+  return std::nullopt;
 }
 
 std::vector<io::Key> medium_and_pulse_keys() {

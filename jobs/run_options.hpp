@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <mpi.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,10 +12,14 @@
 
 namespace clatter::jobs {
 
-struct ConfigOptions {
-  std::string path;               // empty: the built-in defaults
+// The options every config-driven job shares: -c/--config, --set, --print-config, -o/--out and,
+// for long jobs, --progress-interval.
+struct JobOptions {
+  std::string config_path;        // empty: the built-in defaults
   std::vector<std::string> sets;  // "section.key=value", applied in order after the file
-  bool print = false;             // print the effective config and exit
+  bool print_config = false;      // print the effective config and exit
+  std::string out;
+  double progress_interval_s = 10.0;
 };
 
 struct GlobalOptions {
@@ -23,12 +28,16 @@ struct GlobalOptions {
   std::string log_level = "info";
 };
 
-void add_config_options(CLI::App& sub, ConfigOptions& options);
+// Declares the shared options on `sub`; `out` starts as the default output. progress: also
+// --progress-interval.
+void add_job_options(CLI::App& sub, JobOptions& options, const char* out_help, bool progress);
 void add_global_options(CLI::App& app, GlobalOptions& options);
 
 // Rank 0 reads the file; every rank parses the same text, so a bad config fails identically
 // everywhere (as a CollectiveError with exit code 2) and no rank is left waiting.
-io::Config load_config(MPI_Comm comm, const io::Schema& schema, const ConfigOptions& options);
+io::Config load_config(MPI_Comm comm, const io::Schema& schema, const JobOptions& options);
+// The same, or nullopt when --print-config asked only to print it (rank 0 prints).
+std::optional<io::Config> job_config(MPI_Comm comm, const io::Schema& schema, const JobOptions& options);
 
 // Schema keys every acoustic job shares: medium.c_m_s, medium.rho_kg_m3, pulse.h_s.
 std::vector<io::Key> medium_and_pulse_keys();

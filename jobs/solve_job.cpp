@@ -5,12 +5,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/stage_log.hpp"
 #include "io/h5.hpp"
 #include "io/provenance.hpp"
+#include "jobs/command.hpp"
+#include "jobs/run_options.hpp"
 #include "kernels/fdtd/float_mode.hpp"
 #include "kernels/fdtd/listeners.hpp"
 #include "kernels/fdtd/solver.hpp"
@@ -232,6 +235,29 @@ void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult
   }
   io::write_provenance(file, command, config.to_toml(), n_ranks);
   file.commit();
+}
+
+
+Command add_solve_command(CLI::App& parent) {
+  auto* app = parent.add_subcommand("solve", "FDTD solves around one rigid ellipsoid for the chosen rigid-body fields, "
+                                             "recorded at listener points");
+  auto options = std::make_shared<JobOptions>();
+  options->out = "raw.h5";
+  add_job_options(*app, *options, "output HDF5 file of raw time series", true);
+  return {app, [options](const JobContext& context) -> int {
+            const auto config = job_config(context.world, solve_schema(), *options);
+            if (!config) return kExitOk;
+            Stage stage("solve");
+            SolveSpec spec;
+            mpi::agree(context.world, [&] { spec = make_solve_spec(*config); });
+            const auto result = run_solve(context.world, spec, options->progress_interval_s);
+            if (context.is_root) {
+              Stage write("write");
+              write_raw(options->out, spec, result, *config, context.command_line, context.n_ranks);
+              spdlog::info("solve: wrote {}", options->out);
+            }
+            return kExitOk;
+          }};
 }
 
 }  // namespace clatter::jobs
