@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -16,10 +15,17 @@
 namespace clatter::io {
 namespace {
 
-const char* kind_name(std::size_t alternative) {
-  static const char* names[] = {"an integer", "a number", "a boolean (true or false)", "a string",
-                                "an array of numbers"};
-  return names[alternative];
+// What a value of the key's type is called in messages.
+template <class T>
+const char* kind_name() {
+  if constexpr (std::is_same_v<T, std::int64_t>) return "an integer";
+  else if constexpr (std::is_same_v<T, double>) return "a number";
+  else if constexpr (std::is_same_v<T, bool>) return "a boolean (true or false)";
+  else if constexpr (std::is_same_v<T, std::string>) return "a string";
+  else return "an array of numbers";
+}
+const char* kind_name(const Value& v) {
+  return std::visit([](const auto& x) { return kind_name<std::decay_t<decltype(x)>>(); }, v);
 }
 
 std::string format_value(const Value& v) {
@@ -136,6 +142,41 @@ std::string where(const std::string& source, const toml::value& v) {
   return line > 0 ? source + ":" + std::to_string(line) : source;
 }
 
+// One --set value of the key's type, from the text after '='. head: the message prefix.
+Value parse_set_value(std::int64_t, const Key&, std::string_view text, const std::string& head) {
+  std::int64_t n = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || end != text.data() + text.size() || text.empty()) throw InputError(head + "expected an integer");
+  return n;
+}
+Value parse_set_value(double, const Key&, std::string_view text, const std::string& head) {
+  const std::string s(text);
+  char* end = nullptr;
+  const double x = s.empty() ? 0.0 : std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size()) throw InputError(head + "expected a number");
+  return x;
+}
+Value parse_set_value(bool, const Key&, std::string_view text, const std::string& head) {
+  if (text != "true" && text != "false") throw InputError(head + "expected true or false");
+  return text == "true";
+}
+Value parse_set_value(const std::string&, const Key&, std::string_view text, const std::string&) {
+  return std::string(text);
+}
+Value parse_set_value(const RealList&, const Key& key, std::string_view text, const std::string& head) {
+  std::optional<RealList> list;
+  try {
+    std::istringstream in("v = " + std::string(text));
+    list = to_list(toml::find(toml::parse(in, "--set"), "v"), key.group);
+  } catch (const std::exception&) {
+  }
+  if (!list)
+    throw InputError(head + (key.group > 1 ? "expected an array of " + std::to_string(key.group) +
+                                                 "-element arrays, e.g. [[1, 0, 0], [0, 1, 0]]"
+                                           : std::string("expected an array of numbers, e.g. [1, 2]")));
+  return std::move(*list);
+}
+
 }  // namespace
 
 const Key* Schema::find(std::string_view name) const {
@@ -156,20 +197,21 @@ Config::Config(const Schema& schema) : schema_(&schema) {
 }
 
 void Config::assign(const Key& key, Value value, const std::string& source, const std::string& text) {
-  const std::size_t want = key.default_value.index();
+  const Value& want = key.default_value;
   // An integer is a fine value for a real-valued key.
-  if (want == 1 && value.index() == 0) value = static_cast<double>(std::get<std::int64_t>(value));
+  if (std::holds_alternative<double>(want) && std::holds_alternative<std::int64_t>(value))
+    value = static_cast<double>(std::get<std::int64_t>(value));
   const std::string head = source + ": key '" + key.name + "' = " + text + ": ";
-  if (value.index() != want) throw InputError(head + "expected " + kind_name(want));
-  if (want == 0 || want == 1) {
-    double x = want == 0 ? static_cast<double>(std::get<std::int64_t>(value)) : std::get<double>(value);
-    if (!in_range(key.range, x)) throw InputError(head + "must be " + range_text(key.range));
-  }
-  if (want == 4)
-    for (double x : std::get<RealList>(value))
+  if (value.index() != want.index()) throw InputError(head + "expected " + kind_name(want));
+  if (const auto* n = std::get_if<std::int64_t>(&value); n && !in_range(key.range, static_cast<double>(*n)))
+    throw InputError(head + "must be " + range_text(key.range));
+  if (const auto* x = std::get_if<double>(&value); x && !in_range(key.range, *x))
+    throw InputError(head + "must be " + range_text(key.range));
+  if (const auto* list = std::get_if<RealList>(&value))
+    for (double x : *list)
       if (!in_range(key.range, x)) throw InputError(head + "every element must be " + range_text(key.range));
-  if (want == 3 && !key.choices.empty() &&
-      std::find(key.choices.begin(), key.choices.end(), std::get<std::string>(value)) == key.choices.end()) {
+  if (const auto* str = std::get_if<std::string>(&value);
+      str && !key.choices.empty() && std::find(key.choices.begin(), key.choices.end(), *str) == key.choices.end()) {
     std::string list;
     for (const auto& c : key.choices) list += (list.empty() ? "" : ", ") + c;
     throw InputError(head + "must be one of " + list);
@@ -207,7 +249,7 @@ void Config::merge_toml(std::string_view toml_text, const std::string& source) {
         case toml::value_t::boolean: value = static_cast<bool>(v.as_boolean()); break;
         case toml::value_t::string: value = static_cast<std::string>(v.as_string()); break;
         case toml::value_t::array:
-          if (key->default_value.index() == 4) {
+          if (std::holds_alternative<RealList>(key->default_value)) {
             auto list = to_list(v, key->group);
             if (list) {
               value = std::move(*list);
@@ -220,7 +262,7 @@ void Config::merge_toml(std::string_view toml_text, const std::string& source) {
           [[fallthrough]];
         default:
           throw InputError(where(source, v) + ": key '" + full + "' = " + shown(v) + ": expected " +
-                           kind_name(key->default_value.index()));
+                           kind_name(key->default_value));
       }
       assign(*key, std::move(value), where(source, v), shown(v));
     }
@@ -236,62 +278,26 @@ void Config::set(std::string_view assignment) {
   const Key* key = schema_->find(name);
   if (!key) throw InputError(source + ": " + unknown_key_message(*schema_, name));
   const std::string head = source + ": key '" + name + "' = '" + std::string(text) + "': ";
-  Value value;
-  switch (key->default_value.index()) {
-    case 0: {
-      std::int64_t n = 0;
-      auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
-      if (ec != std::errc() || end != text.data() + text.size() || text.empty())
-        throw InputError(head + "expected an integer");
-      value = n;
-      break;
-    }
-    case 1: {
-      std::string s(text);
-      char* end = nullptr;
-      double x = s.empty() ? 0.0 : std::strtod(s.c_str(), &end);
-      if (s.empty() || end != s.c_str() + s.size()) throw InputError(head + "expected a number");
-      value = x;
-      break;
-    }
-    case 2:
-      if (text != "true" && text != "false") throw InputError(head + "expected true or false");
-      value = text == "true";
-      break;
-    case 4: {
-      std::optional<RealList> list;
-      try {
-        std::istringstream in("v = " + std::string(text));
-        list = to_list(toml::find(toml::parse(in, "--set"), "v"), key->group);
-      } catch (const std::exception&) {
-      }
-      if (!list)
-        throw InputError(head + (key->group > 1 ? "expected an array of " + std::to_string(key->group) +
-                                                      "-element arrays, e.g. [[1, 0, 0], [0, 1, 0]]"
-                                                : std::string("expected an array of numbers, e.g. [1, 2]")));
-      value = std::move(*list);
-      break;
-    }
-    default:
-      if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = text.substr(1, text.size() - 2);
-      value = std::string(text);
-  }
+  if (std::holds_alternative<std::string>(key->default_value) && text.size() >= 2 && text.front() == '"' &&
+      text.back() == '"')
+    text = text.substr(1, text.size() - 2);
+  Value value = std::visit([&](const auto& d) -> Value { return parse_set_value(d, *key, text, head); }, key->default_value);
   assign(*key, std::move(value), source, "'" + std::string(text) + "'");
 }
 
-const Value& Config::get(std::string_view key, std::size_t alternative) const {
+template <class T>
+const T& Config::get(std::string_view key) const {
   auto it = values_.find(key);
   if (it == values_.end()) throw std::logic_error("config key '" + std::string(key) + "' is not in the schema");
-  if (it->second.index() != alternative)
-    throw std::logic_error("config key '" + std::string(key) + "' read as " + kind_name(alternative));
-  return it->second;
+  if (const T* v = std::get_if<T>(&it->second)) return *v;
+  throw std::logic_error("config key '" + std::string(key) + "' read as " + kind_name<T>());
 }
 
-std::int64_t Config::integer(std::string_view key) const { return std::get<0>(get(key, 0)); }
-double Config::real(std::string_view key) const { return std::get<1>(get(key, 1)); }
-bool Config::boolean(std::string_view key) const { return std::get<2>(get(key, 2)); }
-const std::string& Config::string(std::string_view key) const { return std::get<3>(get(key, 3)); }
-const RealList& Config::reals(std::string_view key) const { return std::get<4>(get(key, 4)); }
+std::int64_t Config::integer(std::string_view key) const { return get<std::int64_t>(key); }
+double Config::real(std::string_view key) const { return get<double>(key); }
+bool Config::boolean(std::string_view key) const { return get<bool>(key); }
+const std::string& Config::string(std::string_view key) const { return get<std::string>(key); }
+const RealList& Config::reals(std::string_view key) const { return get<RealList>(key); }
 
 std::string Config::to_toml() const {
   std::string out = "# " + schema_->title + "\n";
@@ -306,18 +312,9 @@ std::string Config::to_toml() const {
     out += "# " + k.help + "\n";
     const Value& v = values_.at(k.name);
     out += k.name.substr(dot + 1) + " = " +
-           (v.index() == 4 ? format_list(std::get<RealList>(v), k.group) : format_value(v)) + "\n";
+           (std::holds_alternative<RealList>(v) ? format_list(std::get<RealList>(v), k.group) : format_value(v)) + "\n";
   }
   return out;
-}
-
-std::string read_text_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open config file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read config file");
-  return text.str();
 }
 
 }  // namespace clatter::io

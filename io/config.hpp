@@ -62,13 +62,11 @@ class Config {
   std::string to_toml() const;
 
  private:
-  const Value& get(std::string_view key, std::size_t alternative) const;
+  template <class T>
+  const T& get(std::string_view key) const;
   void assign(const Key& key, Value value, const std::string& where, const std::string& shown);
   const Schema* schema_;
   std::map<std::string, Value, std::less<>> values_;
 };
-
-// Reads a whole text file; InputError naming the file when it cannot be read.
-std::string read_text_file(const std::string& path);
 
 }  // namespace clatter::io

@@ -12,6 +12,7 @@
 
 #include "core/errors.hpp"
 #include "core/rotation.hpp"
+#include "io/text_file.hpp"
 #include "io/text_number.hpp"
 
 namespace clatter::io {
@@ -41,22 +42,23 @@ std::array<double, N> vec(const json& j, const std::string& where) {
   return v;
 }
 
+// The norm of an orientation quaternion, refused (naming `where`) unless it is 1 within what text
+// formats printing 5-6 digits leave. Rotations are not renormalized here: a JSON pose is used as
+// given (off by at most 1e-4 in scale), and the James-lab reader divides by the norm as it inverts.
+double unit_quaternion_norm(const std::array<double, 4>& q, const std::string& where, const std::string& shown) {
+  constexpr double kTolerance = 1e-4;
+  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (!(std::abs(n - 1) <= kTolerance))
+    bad(where, fmt::format("{} has norm {}: must be a unit quaternion (within {})", shown, n, kTolerance));
+  return n;
+}
+
 Pose pose(const json& j, const std::string& where) {
   Pose p;
   p.position_m = vec<3>(need(j, "position_m", where), where + ".position_m");
   p.orientation_wxyz = vec<4>(need(j, "orientation_wxyz", where), where + ".orientation_wxyz");
-  const auto& q = p.orientation_wxyz;
-  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  if (std::abs(n - 1) > 1e-6) bad(where + ".orientation_wxyz", fmt::format("{} has norm {}: must be a unit quaternion", json(q).dump(), n));
+  unit_quaternion_norm(p.orientation_wxyz, where + ".orientation_wxyz", json(p.orientation_wxyz).dump());
   return p;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the scene file");
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 // An object given by its shape: the mesh path (relative to the scene) and its density or mass;
@@ -140,7 +142,7 @@ Scene read_setting(const json& root, const std::string& path) {
 
 json parse(const std::string& path) {
   try {
-    return json::parse(read_text(path));
+    return json::parse(read_text_file(path, "the scene file"));
   } catch (const json::parse_error& e) {
     throw InputError(fmt::format("{}: not valid JSON: {}", path, e.what()));
   }
@@ -233,8 +235,7 @@ void read_impulse_events(const std::string& impulse_path, Scene& scene) {
       for (auto* v : {&rest_point[0], &rest_point[1], &rest_point[2]}) *v = next("contact point p");
       for (auto* v : {&pose.position_m[0], &pose.position_m[1], &pose.position_m[2]}) *v = next("centre of mass x");
       for (auto* v : {&q[0], &q[1], &q[2], &q[3]}) *v = next("quaternion q");
-      const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-      if (!(std::abs(n - 1) < 1e-4)) bad(e.where, fmt::format("object {}: quaternion norm {}: must be a unit quaternion", id, n));
+      const double n = unit_quaternion_norm(q, e.where, fmt::format("object {}: quaternion", id));
       pose.orientation_wxyz = {q[0] / n, -q[1] / n, -q[2] / n, -q[3] / n};  // the inverse of q
     };
     std::array<double, 3> rest_a{}, rest_b{}, dir{};

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/text_file.hpp"
 #include "mpi/comm.hpp"
 
 namespace clatter::jobs {

@@ -15,6 +15,7 @@
 #include "core/stage_log.hpp"
 #include "io/content_hash.hpp"
 #include "io/provenance.hpp"
+#include "io/text_file.hpp"
 #include "jobs/run_options.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/groups.hpp"
@@ -121,11 +122,9 @@ std::string task_path(const std::string& results_dir, const std::string& name) {
 }
 
 std::string read_sweep_config(const std::string& results_dir) {
-  std::ifstream in(manifest_path(results_dir), std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: not a sweep results folder (no sweep.toml)", results_dir));
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  const std::string path = manifest_path(results_dir);
+  if (!fs::exists(path)) throw InputError(fmt::format("{}: not a sweep results folder (no sweep.toml)", results_dir));
+  return io::read_text_file(path, "the sweep manifest");
 }
 
 TaskRecord inspect_task(const std::string& results_dir, const std::string& name, const std::string& config_toml) {

@@ -2,6 +2,7 @@
 
 #include "core/errors.hpp"
 #include "io/config.hpp"
+#include "io/text_file.hpp"
 
 using clatter::InputError;
 using clatter::io::Config;
