@@ -79,7 +79,7 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
   mpi::agree(comm, [&] { topo.emplace(comm, grid.n); });
   const auto start = topo->local_start(), count = topo->local_count();
   const fdtd::Box owned{start, {start[0] + count[0], start[1] + count[1], start[2] + count[2]}};
-  mpi::HaloExchange halo(*topo, count);
+  mpi::HaloExchange halo(*topo, fdtd::Layout(owned));
   const long long cells = 1LL * grid.n[0] * grid.n[1] * grid.n[2];
   const int steps = spec.n_samples - 1;
   spdlog::info("solve: {} grid of {}x{}x{} cells ({:.3g} M) of {} mm, {} ranks as {}x{}x{}, {} steps of {:.4g} us, "
