@@ -64,20 +64,32 @@ Pml::Pml(const Problem& problem, const Layout& layout)
           auto fn = n;
           fn[a] += 1;
           r.face_stride[a] = {long(fn[1]) * fn[2], fn[2], 1};
-          r.v[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0f);
-          r.split_now[a].assign(static_cast<std::size_t>(n[0]) * n[1] * n[2], 0.0f);
-          r.split_old[a].assign(r.split_now[a].size(), 0.0f);
+          r.faces[a] = static_cast<std::size_t>(fn[0]) * fn[1] * fn[2];
+          r.cells[a] = static_cast<std::size_t>(n[0]) * n[1] * n[2];
         }
         regions_.push_back(std::move(r));
       }
 }
 
-void Pml::reset() {
-  for (auto& r : regions_)
+PmlState Pml::make_state() const {
+  PmlState state;
+  for (const auto& r : regions_) {
+    PmlState::Region& s = state.regions.emplace_back();
     for (int a = 0; a < 3; ++a) {
-      std::fill(r.v[a].begin(), r.v[a].end(), 0.0f);
-      std::fill(r.split_now[a].begin(), r.split_now[a].end(), 0.0f);
-      std::fill(r.split_old[a].begin(), r.split_old[a].end(), 0.0f);
+      s.v[a].assign(r.faces[a], 0.0f);
+      s.split_now[a].assign(r.cells[a], 0.0f);
+      s.split_old[a].assign(r.cells[a], 0.0f);
+    }
+  }
+  return state;
+}
+
+void Pml::reset(PmlState& state) const {
+  for (auto& s : state.regions)
+    for (int a = 0; a < 3; ++a) {
+      std::fill(s.v[a].begin(), s.v[a].end(), 0.0f);
+      std::fill(s.split_now[a].begin(), s.split_now[a].end(), 0.0f);
+      std::fill(s.split_old[a].begin(), s.split_old[a].end(), 0.0f);
     }
 }
 
@@ -90,27 +102,29 @@ long long Pml::cells() const {
 std::size_t Pml::bytes() const {
   std::size_t b = 0;
   for (const auto& r : regions_)
-    for (int a = 0; a < 3; ++a) b += (r.v[a].size() + r.split_now[a].size() + r.split_old[a].size()) * sizeof(float);
+    for (int a = 0; a < 3; ++a) b += (r.faces[a] + 2 * r.cells[a]) * sizeof(float);
   return b;
 }
 
-void Pml::update(const float* p_now, float* p_next) {
-  for (auto& r : regions_) {
+void Pml::update(PmlState& state, const float* p_now, float* p_next) const {
+  for (std::size_t i = 0; i < regions_.size(); ++i) {
+    const Region& r = regions_[i];
+    PmlState::Region& s = state.regions[i];
     switch (r.damped) {
-      case 1: update_region<1>(r, p_now, p_next); break;
-      case 2: update_region<2>(r, p_now, p_next); break;
-      case 3: update_region<3>(r, p_now, p_next); break;
-      case 4: update_region<4>(r, p_now, p_next); break;
-      case 5: update_region<5>(r, p_now, p_next); break;
-      case 6: update_region<6>(r, p_now, p_next); break;
-      default: update_region<7>(r, p_now, p_next); break;
+      case 1: update_region<1>(r, s, p_now, p_next); break;
+      case 2: update_region<2>(r, s, p_now, p_next); break;
+      case 3: update_region<3>(r, s, p_now, p_next); break;
+      case 4: update_region<4>(r, s, p_now, p_next); break;
+      case 5: update_region<5>(r, s, p_now, p_next); break;
+      case 6: update_region<6>(r, s, p_now, p_next); break;
+      default: update_region<7>(r, s, p_now, p_next); break;
     }
-    for (int a = 0; a < 3; ++a) r.split_now[a].swap(r.split_old[a]);
+    for (int a = 0; a < 3; ++a) s.split_now[a].swap(s.split_old[a]);
   }
 }
 
 template <int D>
-void Pml::update_region(Region& r, const float* p_now, float* p_next) {
+void Pml::update_region(const Region& r, PmlState::Region& s, const float* p_now, float* p_next) const {
   const Box& b = r.box;
   const auto& st = layout_.stride;
   const std::array<int, 3> n{b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]};
@@ -121,7 +135,7 @@ void Pml::update_region(Region& r, const float* p_now, float* p_next) {
     const auto& fs = r.face_stride[a];
     const float* fd = face_decay_[a].data();
     const float* fg = face_gain_[a].data();
-    float* v = r.v[a].data();
+    float* v = s.v[a].data();
     for (int fi = 0; fi < n[0] + (a == 0); ++fi) {
       const int gi = b.lo[0] + fi;
       if (a == 0 && (gi == 0 || gi == grid_.n[0])) continue;
@@ -169,10 +183,10 @@ void Pml::update_region(Region& r, const float* p_now, float* p_next) {
       for (int a = 0; a < 3; ++a) {
         if (!(D & (1 << a))) continue;
         const auto& fs = r.face_stride[a];
-        vlo[a] = r.v[a].data() + ci * fs[0] + cj * fs[1];
+        vlo[a] = s.v[a].data() + ci * fs[0] + cj * fs[1];
         vhi[a] = vlo[a] + fs[a];
-        now[a] = r.split_now[a].data() + local;
-        old[a] = r.split_old[a].data() + local;
+        now[a] = s.split_now[a].data() + local;
+        old[a] = s.split_old[a].data() + local;
         if (a < 2) {
           const int g = a == 0 ? b.lo[0] + ci : b.lo[1] + cj;
           cdec[a] = cell_decay_[a][static_cast<std::size_t>(g)];
