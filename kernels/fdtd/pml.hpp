@@ -39,8 +39,21 @@ class Pml {
     std::array<std::array<long, 3>, 3> face_stride{};  // per damped axis, strides of its face array
     std::array<std::size_t, 3> faces{}, cells{};       // per damped axis, sizes of v and of each split part
   };
+  struct SplitRow {
+    const float* vlo[3] = {};
+    const float* vhi[3] = {};
+    const float* now[3] = {};
+    float* old[3] = {};
+    float cdec[3] = {}, cgain[3] = {};
+  };
   template <int D>
   void update_region(const Region& r, PmlState::Region& s, const float* p_now, float* p_next) const;
+  template <int a>
+  void update_faces(const Region& r, PmlState::Region& s, const float* p_now) const;
+  template <int D>
+  SplitRow split_row(const Region& r, PmlState::Region& s, int ci, int cj) const;
+  template <int D>
+  void update_pressure(const Region& r, PmlState::Region& s, const float* p_now, float* p_next) const;
 
   Layout layout_;
   Grid grid_;
