@@ -3,9 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <cmath>
-#include <cstring>
 #include <memory>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
@@ -14,9 +13,10 @@
 #include "io/provenance.hpp"
 #include "jobs/command.hpp"
 #include "jobs/run_options.hpp"
+#include "kernels/fdtd/engine.hpp"
 #include "kernels/fdtd/float_mode.hpp"
-#include "kernels/fdtd/listeners.hpp"
-#include "kernels/fdtd/solver.hpp"
+#include "kernels/fdtd/operator.hpp"
+#include "kernels/fdtd/recorder.hpp"
 #include "mpi/cart.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/halo.hpp"
@@ -26,12 +26,6 @@ namespace clatter::jobs {
 namespace fdtd = kernels::fdtd;
 
 namespace {
-
-// One listener corner recorded by the rank that owns its cell.
-struct Probe {
-  int listener, corner;
-  long index;  // storage index in the solver's layout
-};
 
 class Progress {
  public:
@@ -62,16 +56,63 @@ class Progress {
 // to the end of a worthless solve.
 constexpr int kHealthCheckSteps = 64;
 
-void check_health(MPI_Comm comm, const std::vector<float>& recorded, int n_samples, int n, int field) {
-  int local[2] = {interrupt_requested() ? 1 : 0, 0};
-  for (std::size_t q = static_cast<std::size_t>(n); q < recorded.size(); q += static_cast<std::size_t>(n_samples))
-    if (!std::isfinite(recorded[q])) local[1] = 1;
+void check_health(MPI_Comm comm, const fdtd::Recorder& recorder, int n, int field) {
+  int local[2] = {interrupt_requested() ? 1 : 0, recorder.finite_at(n) ? 0 : 1};
   int any[2] = {0, 0};
   mpi::check(MPI_Allreduce(local, any, 2, MPI_INT, MPI_MAX, comm), "MPI_Allreduce");
   if (any[1])
     throw TaskFailure(fmt::format("field {}: the pressure at a listener is not finite at step {} (unstable: "
                                   "check time.dt_s against the CFL limit and the geometry)", field, n));
   if (any[0]) throw Interrupted(fmt::format("field {}: interrupted at step {}", field, n));
+}
+
+// The operator of this rank's block, built once for every field; logs and sums its storage.
+std::unique_ptr<fdtd::Operator> build_operator(MPI_Comm comm, const SolveSpec& spec, const fdtd::Box& owned,
+                                               SolveResult& result) {
+  Stage stage("setup");
+  fdtd::Problem problem = spec.problem;
+  problem.field = spec.fields.front();
+  auto op = std::make_unique<fdtd::Operator>(problem, owned);
+  const auto& k = op->counts();
+  spdlog::debug("solve: rank owns {} cells: {} bulk, {} cut, {} solid, {} PML; {:.1f} MiB", k.owned, k.bulk, k.cut,
+                k.solid, k.pml, static_cast<double>(k.bytes) / 1048576.0);
+  double bytes = static_cast<double>(k.bytes), total = 0;
+  mpi::check(MPI_Allreduce(&bytes, &total, 1, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
+  result.bytes = total;
+  const fdtd::Box in = spec.problem.grid.interior();
+  spdlog::info("solve: memory {:.1f} MiB: {:.1f} bytes per cell, {:.1f} per cell outside the PML", total / 1048576.0,
+               total / static_cast<double>(result.cells), total / static_cast<double>(in.cells()));
+  return op;
+}
+
+// One field: start, step with the health check and progress, gather the corners to rank 0.
+// Returns the series [listener][sample] on rank 0, nothing elsewhere.
+std::vector<float> solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fdtd::Engine& engine,
+                               Progress& progress) {
+  fdtd::Problem problem = spec.problem;
+  problem.field = spec.fields[fi];
+  const int steps = spec.n_samples - 1;
+  std::optional<fdtd::Recorder> recorder;
+  {
+    Stage stage("start");
+    engine.start(problem.field);
+    recorder.emplace(problem, spec.listeners_m, engine.layout(), spec.n_samples);
+  }
+  {
+    Stage loop("time loop");
+    for (int n = 0;; ++n) {
+      recorder->record(n, engine.pressure());
+      if (n % kHealthCheckSteps == 0 || n == steps) check_health(comm, *recorder, n, problem.field);
+      if (n == steps) break;
+      engine.step((n - spec.i_time_zero) * problem.dt_s);
+      progress.step(static_cast<long long>(fi) * steps + n + 1, static_cast<int>(fi) + 1,
+                    static_cast<int>(spec.fields.size()));
+    }
+  }
+  Stage stage("gather");
+  const auto all = mpi::gather(comm, recorder->pack());
+  if (mpi::rank(comm) != 0) return {};
+  return fdtd::interpolate_listeners(recorder->stencils(), spec.n_samples, all);
 }
 
 }  // namespace
@@ -82,7 +123,7 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
   mpi::agree(comm, [&] { topo.emplace(comm, grid.n); });
   const auto start = topo->local_start(), count = topo->local_count();
   const fdtd::Box owned{start, {start[0] + count[0], start[1] + count[1], start[2] + count[2]}};
-  mpi::HaloExchange halo(*topo, count);
+  mpi::HaloExchange halo(*topo, fdtd::Layout(owned));
   const long long cells = 1LL * grid.n[0] * grid.n[1] * grid.n[2];
   const int steps = spec.n_samples - 1;
   spdlog::info("solve: {} grid of {}x{}x{} cells ({:.3g} M) of {} mm, {} ranks as {}x{}x{}, {} steps of {:.4g} us, "
@@ -96,101 +137,13 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
   const fdtd::FlushSubnormals flush;
   Progress progress(progress_interval_s, static_cast<long long>(steps) * static_cast<long long>(spec.fields.size()), cells);
   const auto t_begin = std::chrono::steady_clock::now();
-  // One solver for every field: the cut-cell geometry, the layer and the storage are built once.
-  std::optional<fdtd::Solver> solver;
-  {
-    Stage stage("setup");
-    fdtd::Problem problem = spec.problem;
-    problem.field = spec.fields.front();
-    solver.emplace(problem, owned);
-    const auto& k = solver->counts();
-    spdlog::debug("solve: rank owns {} cells: {} bulk, {} cut, {} solid, {} PML; {:.1f} MiB", k.owned, k.bulk, k.cut,
-                  k.solid, k.pml, static_cast<double>(k.bytes) / 1048576.0);
-    double bytes = static_cast<double>(k.bytes), total = 0;
-    mpi::check(MPI_Allreduce(&bytes, &total, 1, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
-    result.bytes = total;
-    const fdtd::Box in = grid.interior();
-    spdlog::info("solve: memory {:.1f} MiB: {:.1f} bytes per cell, {:.1f} per cell outside the PML", total / 1048576.0,
-                 total / static_cast<double>(cells), total / static_cast<double>(in.cells()));
-  }
+  // One operator and one engine for every field: the cut-cell geometry, the layer and the storage
+  // are built once.
+  const auto op = build_operator(comm, spec, owned, result);
+  fdtd::Engine engine(*op, halo);
   for (std::size_t fi = 0; fi < spec.fields.size(); ++fi) {
-    fdtd::Problem problem = spec.problem;
-    problem.field = spec.fields[fi];
-    std::vector<Probe> probes;
-    std::vector<fdtd::Stencil> stencils;  // per field: mirrored corners carry the field's parity
-    {
-      Stage stage("start");
-      solver->start(problem.field);
-      for (int l = 0; l < static_cast<int>(spec.listeners_m.size()); ++l) {
-        stencils.push_back(fdtd::listener_stencil(problem, spec.listeners_m[static_cast<std::size_t>(l)]));
-        for (int c = 0; c < 8; ++c)
-          if (owned.contains(stencils.back().cell[static_cast<std::size_t>(c)]))
-            probes.push_back({l, c, solver->layout().at(stencils.back().cell[static_cast<std::size_t>(c)])});
-      }
-    }
-    std::vector<float> recorded(probes.size() * static_cast<std::size_t>(spec.n_samples));
-    {
-      Stage loop("time loop");
-      for (int n = 0;; ++n) {
-        {
-          Stage s("record");
-          const float* p = solver->pressure();
-          for (std::size_t q = 0; q < probes.size(); ++q)
-            recorded[q * static_cast<std::size_t>(spec.n_samples) + static_cast<std::size_t>(n)] =
-                p[static_cast<std::size_t>(probes[q].index)];
-        }
-        if (n % kHealthCheckSteps == 0 || n == steps) check_health(comm, recorded, spec.n_samples, n, problem.field);
-        if (n == steps) break;
-        const double t_s = (n - spec.i_time_zero) * problem.dt_s;
-        halo.start(solver->pressure());
-        solver->begin_step();
-        {
-          Stage s("interior");
-          solver->update_bulk(solver->inner_box());
-        }
-        {
-          Stage s("halo wait");
-          halo.finish();
-        }
-        {
-          Stage s("shell, PML, body");
-          for (const auto& b : solver->shell_boxes()) solver->update_bulk(b);
-          solver->finish_step(t_s);
-        }
-        progress.step(static_cast<long long>(fi) * steps + n + 1, static_cast<int>(fi) + 1,
-                      static_cast<int>(spec.fields.size()));
-      }
-    }
-    // Rank 0 collects every recorded corner and interpolates in a fixed order: the result does not
-    // depend on how the grid was split.
-    Stage stage("gather");
-    std::string mine;
-    for (std::size_t q = 0; q < probes.size(); ++q) {
-      const int header[2] = {probes[q].listener, probes[q].corner};
-      mine.append(reinterpret_cast<const char*>(header), sizeof header);
-      mine.append(reinterpret_cast<const char*>(&recorded[q * static_cast<std::size_t>(spec.n_samples)]),
-                  sizeof(float) * static_cast<std::size_t>(spec.n_samples));
-    }
-    auto all = mpi::gather(comm, mine);
-    if (mpi::rank(comm) != 0) continue;
-    const std::size_t ns = static_cast<std::size_t>(spec.n_samples), record = 2 * sizeof(int) + ns * sizeof(float);
-    std::vector<std::array<std::vector<float>, 8>> corners(spec.listeners_m.size());
-    for (const auto& text : all)
-      for (std::size_t off = 0; off + record <= text.size(); off += record) {
-        int header[2];
-        std::memcpy(header, text.data() + off, sizeof header);
-        auto& dst = corners[static_cast<std::size_t>(header[0])][static_cast<std::size_t>(header[1])];
-        dst.resize(ns);
-        std::memcpy(dst.data(), text.data() + off + sizeof header, ns * sizeof(float));
-      }
-    std::vector<float> series(spec.listeners_m.size() * ns);
-    for (std::size_t l = 0; l < corners.size(); ++l)
-      for (std::size_t k = 0; k < ns; ++k) {
-        std::array<float, 8> v{};
-        for (int c = 0; c < 8; ++c) v[static_cast<std::size_t>(c)] = corners[l][static_cast<std::size_t>(c)][k];
-        series[l * ns + k] = static_cast<float>(fdtd::interpolate(stencils[l], v));
-      }
-    result.series.push_back(std::move(series));
+    auto series = solve_field(comm, spec, fi, engine, progress);
+    if (mpi::rank(comm) == 0) result.series.push_back(std::move(series));
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   const double updates = static_cast<double>(cells) * steps * static_cast<double>(spec.fields.size());

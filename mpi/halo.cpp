@@ -2,26 +2,27 @@
 
 namespace clatter::mpi {
 
-HaloExchange::HaloExchange(const CartTopology& topo, const std::array<int, 3>& n) : comm_(topo.comm()) {
-  const int sizes[3] = {n[0] + 2, n[1] + 2, n[2] + 2};
-  for (int a = 0; a < 3; ++a) {
-    neighbor_[2 * a] = topo.neighbor(a, -1);
-    neighbor_[2 * a + 1] = topo.neighbor(a, +1);
-    int sub[3] = {n[0], n[1], n[2]};
-    sub[a] = 1;
+namespace {
+MPI_Datatype subarray(const std::array<int, 3>& extent, const StorageRegion& region) {
+  MPI_Datatype t;
+  check(MPI_Type_create_subarray(3, extent.data(), region.count.data(), region.start.data(), MPI_ORDER_C, MPI_FLOAT, &t),
+        "MPI_Type_create_subarray");
+  check(MPI_Type_commit(&t), "MPI_Type_commit");
+  return t;
+}
+}  // namespace
+
+HaloExchange::HaloExchange(const CartTopology& topo, const BlockLayout& layout) : comm_(topo.comm()) {
+  const auto extent = layout.extent();
+  for (int a = 0; a < 3; ++a)
     for (int side = 0; side < 2; ++side) {
-      int send_start[3] = {1, 1, 1}, recv_start[3] = {1, 1, 1};
-      send_start[a] = side == 0 ? 1 : n[a];     // first or last owned layer
-      recv_start[a] = side == 0 ? 0 : n[a] + 1;  // low or high halo layer
-      MPI_Datatype& s = send_[2 * a + side];
-      MPI_Datatype& r = recv_[2 * a + side];
-      check(MPI_Type_create_subarray(3, sizes, sub, send_start, MPI_ORDER_C, MPI_FLOAT, &s), "MPI_Type_create_subarray");
-      check(MPI_Type_create_subarray(3, sizes, sub, recv_start, MPI_ORDER_C, MPI_FLOAT, &r), "MPI_Type_create_subarray");
-      MPI_Type_commit(&s);
-      MPI_Type_commit(&r);
-      if (neighbor_[2 * a + side] != MPI_PROC_NULL) bytes_ += 4LL * sub[0] * sub[1] * sub[2];
+      const int f = 2 * a + side;
+      neighbor_[f] = topo.neighbor(a, side == 0 ? -1 : +1);
+      const StorageRegion face = layout.face(a, side, false);
+      send_[f] = subarray(extent, face);
+      recv_[f] = subarray(extent, layout.face(a, side, true));
+      if (neighbor_[f] != MPI_PROC_NULL) bytes_ += 4LL * face.count[0] * face.count[1] * face.count[2];
     }
-  }
   requests_.fill(MPI_REQUEST_NULL);
 }
 

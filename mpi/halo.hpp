@@ -3,23 +3,24 @@
 
 #include <array>
 
+#include "core/block_layout.hpp"
+#include "core/halo_exchange.hpp"
 #include "mpi/cart.hpp"
 
 namespace clatter::mpi {
 
-// Non-blocking exchange of the six one-cell face halos of a float block stored with a one-cell
-// halo on every side ((n0+2) x (n1+2) x (n2+2), last index fastest) with the Cartesian neighbours.
-// Faces travel as MPI subarray datatypes, no packing copies. Edge and corner halos are not
-// exchanged (a 7-point stencil never reads them). Usage: start(data); <work>; finish().
-class HaloExchange {
+// Non-blocking exchange of the six one-cell face halos of a float block stored as `layout` says
+// (core/block_layout.hpp) with the Cartesian neighbours. Faces travel as MPI subarray datatypes
+// built from the layout's own face regions, no packing copies.
+class HaloExchange final : public clatter::HaloExchange {
  public:
-  HaloExchange(const CartTopology& topo, const std::array<int, 3>& local_count);
-  ~HaloExchange();
+  HaloExchange(const CartTopology& topo, const BlockLayout& layout);
+  ~HaloExchange() override;
   HaloExchange(const HaloExchange&) = delete;
   HaloExchange& operator=(const HaloExchange&) = delete;
 
-  void start(float* data);
-  void finish();
+  void start(float* data) override;
+  void finish() override;
   // Bytes sent per exchange by this rank.
   long long bytes_per_exchange() const { return bytes_; }
 

@@ -64,20 +64,32 @@ Pml::Pml(const Problem& problem, const Layout& layout)
           auto fn = n;
           fn[a] += 1;
           r.face_stride[a] = {long(fn[1]) * fn[2], fn[2], 1};
-          r.v[a].assign(static_cast<std::size_t>(fn[0]) * fn[1] * fn[2], 0.0f);
-          r.split_now[a].assign(static_cast<std::size_t>(n[0]) * n[1] * n[2], 0.0f);
-          r.split_old[a].assign(r.split_now[a].size(), 0.0f);
+          r.faces[a] = static_cast<std::size_t>(fn[0]) * fn[1] * fn[2];
+          r.cells[a] = static_cast<std::size_t>(n[0]) * n[1] * n[2];
         }
         regions_.push_back(std::move(r));
       }
 }
 
-void Pml::reset() {
-  for (auto& r : regions_)
+PmlState Pml::make_state() const {
+  PmlState state;
+  for (const auto& r : regions_) {
+    PmlState::Region& s = state.regions.emplace_back();
     for (int a = 0; a < 3; ++a) {
-      std::fill(r.v[a].begin(), r.v[a].end(), 0.0f);
-      std::fill(r.split_now[a].begin(), r.split_now[a].end(), 0.0f);
-      std::fill(r.split_old[a].begin(), r.split_old[a].end(), 0.0f);
+      s.v[a].assign(r.faces[a], 0.0f);
+      s.split_now[a].assign(r.cells[a], 0.0f);
+      s.split_old[a].assign(r.cells[a], 0.0f);
+    }
+  }
+  return state;
+}
+
+void Pml::reset(PmlState& state) const {
+  for (auto& s : state.regions)
+    for (int a = 0; a < 3; ++a) {
+      std::fill(s.v[a].begin(), s.v[a].end(), 0.0f);
+      std::fill(s.split_now[a].begin(), s.split_now[a].end(), 0.0f);
+      std::fill(s.split_old[a].begin(), s.split_old[a].end(), 0.0f);
     }
 }
 
@@ -90,115 +102,122 @@ long long Pml::cells() const {
 std::size_t Pml::bytes() const {
   std::size_t b = 0;
   for (const auto& r : regions_)
-    for (int a = 0; a < 3; ++a) b += (r.v[a].size() + r.split_now[a].size() + r.split_old[a].size()) * sizeof(float);
+    for (int a = 0; a < 3; ++a) b += (r.faces[a] + 2 * r.cells[a]) * sizeof(float);
   return b;
 }
 
-void Pml::update(const float* p_now, float* p_next) {
-  for (auto& r : regions_) {
+void Pml::update(PmlState& state, const float* p_now, float* p_next) const {
+  for (std::size_t i = 0; i < regions_.size(); ++i) {
+    const Region& r = regions_[i];
+    PmlState::Region& s = state.regions[i];
     switch (r.damped) {
-      case 1: update_region<1>(r, p_now, p_next); break;
-      case 2: update_region<2>(r, p_now, p_next); break;
-      case 3: update_region<3>(r, p_now, p_next); break;
-      case 4: update_region<4>(r, p_now, p_next); break;
-      case 5: update_region<5>(r, p_now, p_next); break;
-      case 6: update_region<6>(r, p_now, p_next); break;
-      default: update_region<7>(r, p_now, p_next); break;
+      case 1: update_region<1>(r, s, p_now, p_next); break;
+      case 2: update_region<2>(r, s, p_now, p_next); break;
+      case 3: update_region<3>(r, s, p_now, p_next); break;
+      case 4: update_region<4>(r, s, p_now, p_next); break;
+      case 5: update_region<5>(r, s, p_now, p_next); break;
+      case 6: update_region<6>(r, s, p_now, p_next); break;
+      default: update_region<7>(r, s, p_now, p_next); break;
     }
-    for (int a = 0; a < 3; ++a) r.split_now[a].swap(r.split_old[a]);
+    for (int a = 0; a < 3; ++a) s.split_now[a].swap(s.split_old[a]);
   }
 }
 
-template <int D>
-void Pml::update_region(Region& r, const float* p_now, float* p_next) {
+// Face velocities of damped axis `a` from the pressure gradient at t_n. Faces on the grid's outer
+// boundary stay 0 (a rigid wall behind the layer) and are never updated.
+template <int a>
+void Pml::update_faces(const Region& r, PmlState::Region& s, const float* p_now) const {
   const Box& b = r.box;
   const auto& st = layout_.stride;
   const std::array<int, 3> n{b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]};
-  // 1. Face velocities of the damped axes from the pressure gradient at t_n. Faces on the grid's
-  //    outer boundary stay 0 (a rigid wall behind the layer) and are never updated.
-  auto update_faces = [&](auto axis) {
-    constexpr int a = decltype(axis)::value;
-    const auto& fs = r.face_stride[a];
-    const float* fd = face_decay_[a].data();
-    const float* fg = face_gain_[a].data();
-    float* v = r.v[a].data();
-    for (int fi = 0; fi < n[0] + (a == 0); ++fi) {
-      const int gi = b.lo[0] + fi;
-      if (a == 0 && (gi == 0 || gi == grid_.n[0])) continue;
-      for (int fj = 0; fj < n[1] + (a == 1); ++fj) {
-        const int gj = b.lo[1] + fj;
-        if (a == 1 && (gj == 0 || gj == grid_.n[1])) continue;
-        const long cell = layout_.at(gi, gj, b.lo[2]);
-        float* __restrict vrow = v + fi * fs[0] + fj * fs[1];
-        const float* __restrict p = p_now + cell;
-        const float* __restrict pm = p_now + cell - st[a];
-        if (n[2] < 64) __builtin_prefetch(p + 2 * st[1]);
-        if constexpr (a == 2) {
-          const int k0 = b.lo[2] == 0 ? 1 : 0, k1 = b.hi[2] == grid_.n[2] ? n[2] : n[2] + 1;
+  const auto& fs = r.face_stride[a];
+  const float* fd = face_decay_[a].data();
+  const float* fg = face_gain_[a].data();
+  float* v = s.v[a].data();
+  for (int fi = 0; fi < n[0] + (a == 0); ++fi) {
+    const int gi = b.lo[0] + fi;
+    if (a == 0 && (gi == 0 || gi == grid_.n[0])) continue;
+    for (int fj = 0; fj < n[1] + (a == 1); ++fj) {
+      const int gj = b.lo[1] + fj;
+      if (a == 1 && (gj == 0 || gj == grid_.n[1])) continue;
+      const long cell = layout_.at(gi, gj, b.lo[2]);
+      float* __restrict vrow = v + fi * fs[0] + fj * fs[1];
+      const float* __restrict p = p_now + cell;
+      const float* __restrict pm = p_now + cell - st[a];
+      if (n[2] < 64) __builtin_prefetch(p + 2 * st[1]);
+      if constexpr (a == 2) {
+        const int k0 = b.lo[2] == 0 ? 1 : 0, k1 = b.hi[2] == grid_.n[2] ? n[2] : n[2] + 1;
 #pragma omp simd
-          for (int k = k0; k < k1; ++k) vrow[k] = fd[b.lo[2] + k] * vrow[k] - fg[b.lo[2] + k] * (p[k] - pm[k]);
-        } else {
-          const int g = a == 0 ? gi : gj;
-          const float d = fd[g], e = fg[g];
+        for (int k = k0; k < k1; ++k) vrow[k] = fd[b.lo[2] + k] * vrow[k] - fg[b.lo[2] + k] * (p[k] - pm[k]);
+      } else {
+        const int g = a == 0 ? gi : gj;
+        const float d = fd[g], e = fg[g];
 #pragma omp simd
-          for (int k = 0; k < n[2]; ++k) vrow[k] = d * vrow[k] - e * (p[k] - pm[k]);
-        }
+        for (int k = 0; k < n[2]; ++k) vrow[k] = d * vrow[k] - e * (p[k] - pm[k]);
       }
     }
-  };
-  if constexpr ((D & 1) != 0) update_faces(std::integral_constant<int, 0>{});
-  if constexpr ((D & 2) != 0) update_faces(std::integral_constant<int, 1>{});
-  if constexpr ((D & 4) != 0) update_faces(std::integral_constant<int, 2>{});
+  }
+}
 
-  // 2. Pressure: damped split parts explicitly, undamped parts through the leapfrog Laplacian.
+// Per damped axis of row (ci, cj): split parts (now, old -> next), face velocities below and above
+// the cell, and the x and y cell coefficients.
+template <int D>
+Pml::SplitRow Pml::split_row(const Region& r, PmlState::Region& s, int ci, int cj) const {
+  const Box& b = r.box;
+  const std::array<int, 3> n{b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]};
+  const long local = (long(ci) * n[1] + cj) * n[2];
+  SplitRow row;
+  for (int a = 0; a < 3; ++a) {
+    if (!(D & (1 << a))) continue;
+    const auto& fs = r.face_stride[a];
+    row.vlo[a] = s.v[a].data() + ci * fs[0] + cj * fs[1];
+    row.vhi[a] = row.vlo[a] + fs[a];
+    row.now[a] = s.split_now[a].data() + local;
+    row.old[a] = s.split_old[a].data() + local;
+    if (a < 2) {
+      const int g = a == 0 ? b.lo[0] + ci : b.lo[1] + cj;
+      row.cdec[a] = cell_decay_[a][static_cast<std::size_t>(g)];
+      row.cgain[a] = cell_gain_[a][static_cast<std::size_t>(g)];
+    }
+  }
+  return row;
+}
+
+// Pressure of one region: damped split parts explicitly, undamped parts through the leapfrog Laplacian.
+template <int D>
+void Pml::update_pressure(const Region& r, PmlState::Region& s, const float* p_now, float* p_next) const {
+  const Box& b = r.box;
+  const auto& st = layout_.stride;
+  const std::array<int, 3> n{b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]};
   constexpr int undamped = 3 - ((D & 1) != 0) - ((D & 2) != 0) - ((D & 4) != 0);
   const float l2 = lambda2_, centre = 2.0f * static_cast<float>(undamped);
   const long sx = st[0], sy = st[1];
   for (int ci = 0; ci < n[0]; ++ci)
     for (int cj = 0; cj < n[1]; ++cj) {
       const long cell = layout_.at(b.lo[0] + ci, b.lo[1] + cj, b.lo[2]);
-      const long local = (long(ci) * n[1] + cj) * n[2];
       const float* __restrict p = p_now + cell;
       float* __restrict q = p_next + cell;
-      // Per damped axis: split parts (now, old -> next), face velocities below and above the cell.
-      const float* vlo[3] = {};
-      const float* vhi[3] = {};
-      const float* now[3] = {};
-      float* old[3] = {};
-      float cdec[3] = {}, cgain[3] = {};
-      for (int a = 0; a < 3; ++a) {
-        if (!(D & (1 << a))) continue;
-        const auto& fs = r.face_stride[a];
-        vlo[a] = r.v[a].data() + ci * fs[0] + cj * fs[1];
-        vhi[a] = vlo[a] + fs[a];
-        now[a] = r.split_now[a].data() + local;
-        old[a] = r.split_old[a].data() + local;
-        if (a < 2) {
-          const int g = a == 0 ? b.lo[0] + ci : b.lo[1] + cj;
-          cdec[a] = cell_decay_[a][static_cast<std::size_t>(g)];
-          cgain[a] = cell_gain_[a][static_cast<std::size_t>(g)];
-        }
-      }
+      const SplitRow row = split_row<D>(r, s, ci, cj);
       // Named restrict pointers (not arrays of pointers) so the compiler vectorizes the k loop.
       const float* __restrict zdec = cell_decay_[2].data() + b.lo[2];
       const float* __restrict zgain = cell_gain_[2].data() + b.lo[2];
-      const float* __restrict nx = now[0];
-      const float* __restrict ny = now[1];
-      const float* __restrict nz = now[2];
-      float* __restrict ox = old[0];
-      float* __restrict oy = old[1];
-      float* __restrict oz = old[2];
-      const float* __restrict lx = vlo[0];
-      const float* __restrict hx = vhi[0];
-      const float* __restrict ly = vlo[1];
-      const float* __restrict hy = vhi[1];
-      const float* __restrict lz = vlo[2];
-      const float* __restrict hz = vhi[2];
+      const float* __restrict nx = row.now[0];
+      const float* __restrict ny = row.now[1];
+      const float* __restrict nz = row.now[2];
+      float* __restrict ox = row.old[0];
+      float* __restrict oy = row.old[1];
+      float* __restrict oz = row.old[2];
+      const float* __restrict lx = row.vlo[0];
+      const float* __restrict hx = row.vhi[0];
+      const float* __restrict ly = row.vlo[1];
+      const float* __restrict hy = row.vhi[1];
+      const float* __restrict lz = row.vlo[2];
+      const float* __restrict hz = row.vhi[2];
       const float* __restrict pxm = p - sx;
       const float* __restrict pxp = p + sx;
       const float* __restrict pym = p - sy;
       const float* __restrict pyp = p + sy;
-      const float dx0 = cdec[0], gx0 = cgain[0], dy0 = cdec[1], gy0 = cgain[1];
+      const float dx0 = row.cdec[0], gx0 = row.cgain[0], dy0 = row.cdec[1], gy0 = row.cgain[1];
       // No runtime alias checks (the arrays never overlap): they would dominate the 6-cell z rows.
       if (n[2] < 64) {
         // Short rows (the z layers) touch a few cache lines 1 KB apart: fetch the rows two ahead,
@@ -235,6 +254,14 @@ void Pml::update_region(Region& r, const float* p_now, float* p_next) {
         q[k] = (2.0f * p[k] - q[k]) + l2 * (pairs - centre * p[k]) + split;
       }
     }
+}
+
+template <int D>
+void Pml::update_region(const Region& r, PmlState::Region& s, const float* p_now, float* p_next) const {
+  if constexpr ((D & 1) != 0) update_faces<0>(r, s, p_now);
+  if constexpr ((D & 2) != 0) update_faces<1>(r, s, p_now);
+  if constexpr ((D & 4) != 0) update_faces<2>(r, s, p_now);
+  update_pressure<D>(r, s, p_now, p_next);
 }
 
 }  // namespace clatter::kernels::fdtd
