@@ -9,6 +9,12 @@
 
 namespace clatter::io {
 
+using model::PanBank;
+using model::PanBankHeader;
+using model::PanProxy;
+using model::PanTaskResult;
+using model::SparseTerms;
+
 void write_pan_bank(const std::string& path, const PanBank& bank, const std::string& command,
                     const std::string& config_toml, int n_ranks) {
   const PanBankHeader& h = bank.header;
@@ -61,8 +67,8 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
     for (const auto& dirs_terms : proxy.fields) {
       solved.push_back(dirs_terms.empty() ? 0 : 1);  // a field not in solve.fields
       for (std::size_t d = 0; d < n_dirs; ++d) {
-        static const PanTerms none;
-        const PanTerms& t = dirs_terms.empty() ? none : dirs_terms.at(d);
+        static const SparseTerms none;
+        const SparseTerms& t = dirs_terms.empty() ? none : dirs_terms.at(d);
         for (std::size_t e = 0; e < t.index.size(); ++e)
           delta.push_back(static_cast<std::uint16_t>(e == 0 ? t.index[e] : t.index[e] - t.index[e - 1]));
         offsets.push_back(static_cast<std::uint32_t>(delta.size()));
@@ -138,7 +144,7 @@ PanTaskResult read_pan_task(const File& file, const std::string& group, int term
   for (std::size_t d = 0; d < n_directions; ++d) {
     if (offsets[d] > offsets[d + 1] || offsets[d + 1] > index.size())
       throw InputError(file.path() + ": '" + group + "/offsets' is not a partition of the coefficients");
-    PanTerms terms_d;
+    SparseTerms terms_d;
     for (std::uint32_t e = offsets[d]; e < offsets[d + 1]; ++e) {
       if (index[e] >= length || (e > offsets[d] && index[e] <= index[e - 1]))
         throw InputError(file.path() + ": '" + group + "/index' is out of range or not ascending");

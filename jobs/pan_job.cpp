@@ -10,6 +10,8 @@
 #include "jobs/run_options.hpp"
 #include "kernels/fdtd/listeners.hpp"
 #include "kernels/pan/directions.hpp"
+#include "kernels/pan/fit.hpp"
+#include "kernels/pan/wavelet.hpp"
 #include "mpi/comm.hpp"
 
 namespace clatter::jobs {
@@ -117,8 +119,8 @@ PanSpec make_pan_spec(const io::Config& config) {
   return spec;
 }
 
-io::PanBankHeader pan_header(const PanSpec& spec) {
-  io::PanBankHeader h;
+model::PanBankHeader pan_header(const PanSpec& spec) {
+  model::PanBankHeader h;
   const auto& p = spec.solve.problem;
   h.c_m_s = p.c_m_s;
   h.rho_kg_m3 = p.rho_kg_m3;
@@ -156,7 +158,7 @@ TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task
   one.solve.fields = {task.field};
   auto result = build_proxy(group, one, task.proxy, {}, progress_interval_s);
   if (mpi::rank(group) != 0) return {};
-  io::PanTaskResult r;
+  model::PanTaskResult r;
   r.proxy = static_cast<std::uint32_t>(task.proxy);
   r.b_m = result.proxy.b_m;
   r.c_m = result.proxy.c_m;
@@ -167,11 +169,11 @@ TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task
   };
 }
 
-io::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml) {
-  io::PanBank bank;
+model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml) {
+  model::PanBank bank;
   bank.header = pan_header(spec);
   for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) {
-    io::PanProxy proxy;
+    model::PanProxy proxy;
     proxy.b_m = spec.proxies_bc_m[p][0];
     proxy.c_m = spec.proxies_bc_m[p][1];
     proxy.delay_steps = proxy_delay_steps(spec, p);
@@ -228,13 +230,11 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
     for (std::size_t d = 0; d < directions.size(); ++d) {
       std::vector<const float*> series;
       for (std::size_t i = 0; i < m; ++i) series.push_back(raw.series[f].data() + (d * m + i) * ns);
-      auto terms = fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d]);
-      dirs.push_back({std::move(terms.index), std::move(terms.value)});
+      dirs.push_back(fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d]));
     }
     out.extra_series.emplace_back(raw.series[f].begin() + static_cast<std::ptrdiff_t>(n_fitted * ns), raw.series[f].end());
   }
   return out;
 }
-
 
 }  // namespace clatter::jobs
