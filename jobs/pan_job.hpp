@@ -33,7 +33,28 @@ struct PanSpec {
   std::uint32_t length = 0;            // wavelet length T
 };
 
-// Throws InputError for any invalid combination.
+// The parameters of a PAN bank as the user gives them: one field per key of pan_schema(), named
+// after it (section_key, with its unit); parse_pan_params has checked the schema's types and ranges.
+struct PanParams {
+  double medium_c_m_s = 0, medium_rho_kg_m3 = 0;
+  double pulse_h_s = 0;
+  double proxies_a_m = 0, proxies_grid_min_m = 0, proxies_grid_step_m = 0;
+  std::vector<std::array<double, 2>> proxies_list_m;  // (B, C); when given, replaces the grid
+  double grid_dx_m = 0;
+  int grid_pml_cells = 0;
+  double time_dt_s = 0, time_tail_s = 0;
+  std::vector<double> solve_fields;
+  std::vector<double> fit_radii_m;
+  int fit_terms = 0, fit_divisions = 0;
+  double fit_epsilon = 0;
+  int solver_cut_cell_samples = 0;
+};
+
+PanParams parse_pan_params(const io::Config& config);
+
+// Throws InputError for any invalid combination (the solve's checks included: make_solve_spec).
+PanSpec make_pan_spec(const PanParams& params);
+// make_pan_spec(parse_pan_params(config)).
 PanSpec make_pan_spec(const io::Config& config);
 
 // Solves one proxy (all ranks) and fits it (rank 0). `extra_listeners_m` are recorded too and
