@@ -9,6 +9,60 @@
 
 namespace clatter::io {
 
+using model::PanBank;
+using model::PanBankHeader;
+using model::PanProxy;
+using model::PanTaskResult;
+using model::SparseTerms;
+
+namespace {
+
+// The bank's coefficients as stored: delays, solved flags, and the CSR of quantized values.
+struct PackedCoefficients {
+  std::vector<std::uint8_t> solved;
+  std::vector<std::int32_t> delays;
+  std::vector<std::uint32_t> offsets{0};
+  std::vector<std::uint16_t> delta;
+  std::vector<std::int16_t> quantized;
+  std::vector<float> scale;
+};
+
+PackedCoefficients pack_coefficients(const PanBank& bank) {
+  const PanBankHeader& h = bank.header;
+  const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms);
+  PackedCoefficients out;
+  auto& [solved, delays, offsets, delta, quantized, scale] = out;
+  for (const auto& proxy : bank.proxies) {
+    if (proxy.delay_steps.size() != n_dirs) throw std::invalid_argument("PAN bank: one delay per direction");
+    delays.insert(delays.end(), proxy.delay_steps.begin(), proxy.delay_steps.end());
+    for (const auto& dirs_terms : proxy.fields) {
+      solved.push_back(dirs_terms.empty() ? 0 : 1);  // a field not in solve.fields
+      for (std::size_t d = 0; d < n_dirs; ++d) {
+        static const SparseTerms none;
+        const SparseTerms& t = dirs_terms.empty() ? none : dirs_terms.at(d);
+        for (std::size_t e = 0; e < t.index.size(); ++e)
+          delta.push_back(static_cast<std::uint16_t>(e == 0 ? t.index[e] : t.index[e] - t.index[e - 1]));
+        offsets.push_back(static_cast<std::uint32_t>(delta.size()));
+        for (std::size_t k = 0; k < n_terms; ++k) {
+          float m = 0;
+          for (std::size_t e = 0; e < t.index.size(); ++e) m = std::max(m, std::abs(t.value[e * n_terms + k]));
+          // Quantization step matched to the fit: coefficients under epsilon * max were dropped, so
+          // a step of epsilon * max / 16 (error <= epsilon * max / 32) adds little, and small
+          // integers deflate well. The 16-bit range bounds the step from below.
+          scale.push_back(std::max(m / 32767.0f, static_cast<float>(h.epsilon) * m / 16.0f));
+        }
+        const float* sc = &scale[scale.size() - n_terms];
+        for (std::size_t e = 0; e < t.index.size(); ++e)
+          for (std::size_t k = 0; k < n_terms; ++k)
+            quantized.push_back(static_cast<std::int16_t>(sc[k] > 0 ? std::lround(t.value[e * n_terms + k] / sc[k]) : 0));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 void write_pan_bank(const std::string& path, const PanBank& bank, const std::string& command,
                     const std::string& config_toml, int n_ranks) {
   const PanBankHeader& h = bank.header;
@@ -49,38 +103,8 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
   // a bank is a handful of datasets however many proxies it holds (HDF5 objects cost ~1-2 KB each).
   const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms);
   const std::size_t n_proxies = bank.proxies.size();
-  std::vector<std::uint8_t> solved;
-  std::vector<std::int32_t> delays;
-  std::vector<std::uint32_t> offsets{0};
-  std::vector<std::uint16_t> delta;
-  std::vector<std::int16_t> quantized;
-  std::vector<float> scale;
-  for (const auto& proxy : bank.proxies) {
-    if (proxy.delay_steps.size() != n_dirs) throw std::invalid_argument("PAN bank: one delay per direction");
-    delays.insert(delays.end(), proxy.delay_steps.begin(), proxy.delay_steps.end());
-    for (const auto& dirs_terms : proxy.fields) {
-      solved.push_back(dirs_terms.empty() ? 0 : 1);  // a field not in solve.fields
-      for (std::size_t d = 0; d < n_dirs; ++d) {
-        static const PanTerms none;
-        const PanTerms& t = dirs_terms.empty() ? none : dirs_terms.at(d);
-        for (std::size_t e = 0; e < t.index.size(); ++e)
-          delta.push_back(static_cast<std::uint16_t>(e == 0 ? t.index[e] : t.index[e] - t.index[e - 1]));
-        offsets.push_back(static_cast<std::uint32_t>(delta.size()));
-        for (std::size_t k = 0; k < n_terms; ++k) {
-          float m = 0;
-          for (std::size_t e = 0; e < t.index.size(); ++e) m = std::max(m, std::abs(t.value[e * n_terms + k]));
-          // Quantization step matched to the fit: coefficients under epsilon * max were dropped, so
-          // a step of epsilon * max / 16 (error <= epsilon * max / 32) adds little, and small
-          // integers deflate well. The 16-bit range bounds the step from below.
-          scale.push_back(std::max(m / 32767.0f, static_cast<float>(h.epsilon) * m / 16.0f));
-        }
-        const float* sc = &scale[scale.size() - n_terms];
-        for (std::size_t e = 0; e < t.index.size(); ++e)
-          for (std::size_t k = 0; k < n_terms; ++k)
-            quantized.push_back(static_cast<std::int16_t>(sc[k] > 0 ? std::lround(t.value[e * n_terms + k] / sc[k]) : 0));
-      }
-    }
-  }
+  const PackedCoefficients packed = pack_coefficients(bank);
+  const auto& [solved, delays, offsets, delta, quantized, scale] = packed;
   write_dataset<std::int32_t>(file, "/proxies/delay_steps", delays, {n_proxies, n_dirs}, "1", true);
   write_dataset<std::uint8_t>(file, "/coefficients/solved", solved, {n_proxies, 6}, "1", true);
   write_dataset<std::uint32_t>(file, "/coefficients/offsets", offsets, {offsets.size()}, "1", true);
@@ -138,7 +162,7 @@ PanTaskResult read_pan_task(const File& file, const std::string& group, int term
   for (std::size_t d = 0; d < n_directions; ++d) {
     if (offsets[d] > offsets[d + 1] || offsets[d + 1] > index.size())
       throw InputError(file.path() + ": '" + group + "/offsets' is not a partition of the coefficients");
-    PanTerms terms_d;
+    SparseTerms terms_d;
     for (std::uint32_t e = offsets[d]; e < offsets[d + 1]; ++e) {
       if (index[e] >= length || (e > offsets[d] && index[e] <= index[e - 1]))
         throw InputError(file.path() + ": '" + group + "/index' is out of range or not ascending");

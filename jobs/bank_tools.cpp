@@ -14,13 +14,13 @@
 #include "io/h5.hpp"
 #include "io/pan_bank.hpp"
 #include "jobs/command.hpp"
-#include "jobs/pan_job.hpp"
+#include "kernels/pan/field.hpp"
 #include "mpi/comm.hpp"
 
 namespace clatter::jobs {
 
 std::string bank_info(const std::string& path) {
-  const io::PanBank bank = io::read_pan_bank(path);
+  const model::PanBank bank = io::read_pan_bank(path);
   const auto& h = bank.header;
   auto file = io::File::open(path);
   auto prov = [&](const char* key) { return io::read_string_attribute(file, "/provenance", key); };
@@ -61,9 +61,9 @@ std::string bank_info(const std::string& path) {
 }
 
 std::string probe_csv(const ProbeRequest& r) {
-  const io::PanBank bank = io::read_pan_bank(r.bank_path);
+  const model::PanBank bank = io::read_pan_bank(r.bank_path);
   const auto& h = bank.header;
-  const io::PanProxy* proxy = nullptr;
+  const model::PanProxy* proxy = nullptr;
   for (const auto& p : bank.proxies)
     if (std::abs(p.b_m - r.proxy_bc_m[0]) < 1e-9 && std::abs(p.c_m - r.proxy_bc_m[1]) < 1e-9) proxy = &p;
   if (!proxy) throw InputError(fmt::format("{}: no proxy (B, C) = ({}, {}) in the bank (see clatter-bank info)", r.bank_path,
@@ -72,15 +72,14 @@ std::string probe_csv(const ProbeRequest& r) {
     throw InputError(fmt::format("{}: /bank/directions holds {} directions: not an octant triangulation with an even "
                                  "number of divisions", r.bank_path, h.directions.size()));
   if (r.field < 1 || r.field > 6) throw InputError(fmt::format("--field {}: the bank holds fields 1-6", r.field));
-  if (proxy->fields[static_cast<std::size_t>(r.field - 1)].size() != h.directions.size())
+  if (proxy->field(r.field).size() != h.directions.size())
     throw InputError(fmt::format("{}: field {} was not solved for this proxy", r.bank_path, r.field));
   if (!(r.scale > 0)) throw InputError(fmt::format("--scale {}: must be > 0", r.scale));
   const double dist = std::hypot(r.point_m[0], r.point_m[1], r.point_m[2]);
   if (!(dist > h.a_m * r.scale))
     throw InputError(fmt::format("--point {},{},{}: |x| = {} m is inside the proxy's bounding sphere (radius A beta = {} m)",
                                  r.point_m[0], r.point_m[1], r.point_m[2], dist, h.a_m * r.scale));
-  const auto field = proxy_field(h, *proxy, r.field);
-  const auto s = kernels::pan::evaluate(field, r.point_m, r.scale, r.rate_hz, r.interpolation);
+  const auto s = kernels::pan::evaluate({&h, proxy, r.field}, r.point_m, r.scale, r.rate_hz, r.interpolation);
   std::string out = "t_s,p_Pa\n";
   for (std::size_t n = 0; n < s.p.size(); ++n)
     out += fmt::format("{:.9g},{:.9g}\n", s.t0_s + static_cast<double>(n) * s.dt_s, s.p[n]);

@@ -10,6 +10,8 @@
 #include "jobs/run_options.hpp"
 #include "kernels/fdtd/listeners.hpp"
 #include "kernels/pan/directions.hpp"
+#include "kernels/pan/fit.hpp"
+#include "kernels/pan/wavelet.hpp"
 #include "mpi/comm.hpp"
 
 namespace clatter::jobs {
@@ -47,32 +49,87 @@ const io::Schema& pan_schema() {
   return schema;
 }
 
-PanSpec make_pan_spec(const io::Config& config) {
-  PanSpec spec;
-  spec.a_m = config.real("proxies.a_m");
+PanParams parse_pan_params(const io::Config& config) {
+  PanParams p;
+  p.medium_c_m_s = config.real("medium.c_m_s");
+  p.medium_rho_kg_m3 = config.real("medium.rho_kg_m3");
+  p.pulse_h_s = config.real("pulse.h_s");
+  p.proxies_a_m = config.real("proxies.a_m");
+  p.proxies_grid_min_m = config.real("proxies.grid_min_m");
+  p.proxies_grid_step_m = config.real("proxies.grid_step_m");
   const auto& list = config.reals("proxies.list_m");
-  if (!list.empty()) {
-    for (std::size_t i = 0; i + 1 < list.size(); i += 2) spec.proxies_bc_m.push_back({list[i], list[i + 1]});
-  } else {
-    const double lo = config.real("proxies.grid_min_m"), step = config.real("proxies.grid_step_m");
-    std::vector<double> values;
-    for (int i = 0; lo + i * step <= spec.a_m * (1 + 1e-12); ++i) values.push_back(lo + i * step);
-    for (std::size_t b = 0; b < values.size(); ++b)
-      for (std::size_t c = 0; c <= b; ++c) spec.proxies_bc_m.push_back({values[b], values[c]});
-  }
+  for (std::size_t i = 0; i + 1 < list.size(); i += 2) p.proxies_list_m.push_back({list[i], list[i + 1]});
+  p.grid_dx_m = config.real("grid.dx_m");
+  p.grid_pml_cells = static_cast<int>(config.integer("grid.pml_cells"));
+  p.time_dt_s = config.real("time.dt_s");
+  p.time_tail_s = config.real("time.tail_s");
+  p.solve_fields = config.reals("solve.fields");
+  p.fit_radii_m = config.reals("fit.radii_m");
+  p.fit_terms = static_cast<int>(config.integer("fit.terms"));
+  p.fit_divisions = static_cast<int>(config.integer("fit.divisions"));
+  p.fit_epsilon = config.real("fit.epsilon");
+  p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
+  return p;
+}
+
+PanSpec make_pan_spec(const io::Config& config) { return make_pan_spec(parse_pan_params(config)); }
+
+namespace {
+
+// The (B, C) proxies: the explicit list, or the grid C <= B <= A.
+std::vector<std::array<double, 2>> proxy_list(const PanParams& in) {
+  if (!in.proxies_list_m.empty()) return in.proxies_list_m;
+  std::vector<std::array<double, 2>> out;
+  const double lo = in.proxies_grid_min_m, step = in.proxies_grid_step_m;
+  std::vector<double> values;
+  for (int i = 0; lo + i * step <= in.proxies_a_m * (1 + 1e-12); ++i) values.push_back(lo + i * step);
+  for (std::size_t b = 0; b < values.size(); ++b)
+    for (std::size_t c = 0; c <= b; ++c) out.push_back({values[b], values[c]});
+  return out;
+}
+
+// One proxy's solve: octant mode (the bank stores the positive octant; eqs. 16-21 give the rest),
+// a sphere of radius A (build_proxy sets the body per proxy), listeners at every direction x radius.
+SolveParams proxy_solve_params(const PanParams& in, const PanSpec& spec) {
+  const double r_max = *std::max_element(spec.radii_m.begin(), spec.radii_m.end());
+  SolveParams s = parse_solve_params(io::Config(solve_schema()));  // the solve's defaults for the rest
+  s.medium_c_m_s = in.medium_c_m_s;
+  s.medium_rho_kg_m3 = in.medium_rho_kg_m3;
+  s.pulse_h_s = in.pulse_h_s;
+  s.grid_dx_m = in.grid_dx_m;
+  s.grid_half_width_m = r_max + 3 * in.grid_dx_m;
+  s.grid_pml_cells = in.grid_pml_cells;
+  s.grid_octant = true;
+  s.time_dt_s = in.time_dt_s;
+  s.time_duration_s = r_max / in.medium_c_m_s + in.time_tail_s;
+  s.object_a_m = s.object_b_m = s.object_c_m = spec.a_m;
+  s.solver_cut_cell_samples = in.solver_cut_cell_samples;
+  s.solve_fields = in.solve_fields;
+  s.listeners_points_m.clear();
+  for (const auto& d : pan::direction_vertices(spec.divisions))
+    for (double r : spec.radii_m) s.listeners_points_m.push_back({r * d[0], r * d[1], r * d[2]});
+  return s;
+}
+
+}  // namespace
+
+PanSpec make_pan_spec(const PanParams& in) {
+  PanSpec spec;
+  spec.a_m = in.proxies_a_m;
+  spec.proxies_bc_m = proxy_list(in);
   for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) {
     const auto [b, c] = spec.proxies_bc_m[p];
     if (!(c <= b && b <= spec.a_m))
       throw InputError(fmt::format("config: key 'proxies.list_m' proxy {} = [{}, {}]: needs C <= B <= A = {}", p + 1, b,
                                    c, spec.a_m));
   }
-  spec.terms = static_cast<int>(config.integer("fit.terms"));
-  spec.divisions = static_cast<int>(config.integer("fit.divisions"));
+  spec.terms = in.fit_terms;
+  spec.divisions = in.fit_divisions;
   if (spec.divisions % 2 != 0)  // the quadratic direction elements group the triangles in fours
     throw InputError(fmt::format("config: key 'fit.divisions' has {}: must be even", spec.divisions));
-  spec.epsilon = config.real("fit.epsilon");
-  const double c_m_s = config.real("medium.c_m_s"), dt = config.real("time.dt_s"), dx = config.real("grid.dx_m");
-  for (double r : config.reals("fit.radii_m")) {
+  spec.epsilon = in.fit_epsilon;
+  const double c_m_s = in.medium_c_m_s, dt = in.time_dt_s, dx = in.grid_dx_m;
+  for (double r : in.fit_radii_m) {
     const int k = static_cast<int>(std::lround(r / (c_m_s * dt)));
     spec.shift_steps.push_back(k);
     spec.radii_m.push_back(k * c_m_s * dt);
@@ -84,41 +141,15 @@ PanSpec make_pan_spec(const io::Config& config) {
   if (static_cast<int>(spec.radii_m.size()) < spec.terms)
     throw InputError(fmt::format("config: key 'fit.radii_m' has {} radii: need at least fit.terms = {}",
                                  spec.radii_m.size(), spec.terms));
-  const double r_max = *std::max_element(spec.radii_m.begin(), spec.radii_m.end());
-
-  // The solve: octant mode (the bank stores the positive octant; eqs. 16-21 give the rest).
-  io::Config solve(solve_schema());
-  auto set = [&](const std::string& key, double v) { solve.set(fmt::format("{}={:.17g}", key, v)); };
-  set("medium.c_m_s", c_m_s);
-  set("medium.rho_kg_m3", config.real("medium.rho_kg_m3"));
-  set("pulse.h_s", config.real("pulse.h_s"));
-  set("grid.dx_m", dx);
-  set("grid.half_width_m", r_max + 3 * dx);
-  solve.set(fmt::format("grid.pml_cells={}", config.integer("grid.pml_cells")));
-  solve.set("grid.octant=true");
-  set("time.dt_s", dt);
-  set("time.duration_s", r_max / c_m_s + config.real("time.tail_s"));
-  set("object.a_m", spec.a_m);
-  set("object.b_m", spec.a_m);
-  set("object.c_m", spec.a_m);
-  solve.set(fmt::format("solver.cut_cell_samples={}", config.integer("solver.cut_cell_samples")));
-  std::string fields = "[";
-  for (double f : config.reals("solve.fields")) fields += fmt::format("{}{}", fields.size() > 1 ? ", " : "", f);
-  solve.set("solve.fields=" + fields + "]");
-  std::string points = "[";
-  for (const auto& d : pan::direction_vertices(spec.divisions))
-    for (double r : spec.radii_m)
-      points += fmt::format("{}[{:.17g}, {:.17g}, {:.17g}]", points.size() > 1 ? ", " : "", r * d[0], r * d[1], r * d[2]);
-  solve.set("listeners.points_m=" + points + "]");
-  spec.solve = make_solve_spec(solve);  // CFL, domain and listener checks
+  spec.solve = make_solve_spec(proxy_solve_params(in, spec));  // CFL, domain and listener checks
   spec.lead_steps = static_cast<int>(std::ceil(spec.a_m / (c_m_s * dt)));
   const int k_min = *std::min_element(spec.shift_steps.begin(), spec.shift_steps.end()) - spec.lead_steps;
   spec.length = static_cast<std::uint32_t>(pan::next_power_of_two(static_cast<std::size_t>(spec.solve.n_samples - k_min)));
   return spec;
 }
 
-io::PanBankHeader pan_header(const PanSpec& spec) {
-  io::PanBankHeader h;
+model::PanBankHeader pan_header(const PanSpec& spec) {
+  model::PanBankHeader h;
   const auto& p = spec.solve.problem;
   h.c_m_s = p.c_m_s;
   h.rho_kg_m3 = p.rho_kg_m3;
@@ -156,7 +187,7 @@ TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task
   one.solve.fields = {task.field};
   auto result = build_proxy(group, one, task.proxy, {}, progress_interval_s);
   if (mpi::rank(group) != 0) return {};
-  io::PanTaskResult r;
+  model::PanTaskResult r;
   r.proxy = static_cast<std::uint32_t>(task.proxy);
   r.b_m = result.proxy.b_m;
   r.c_m = result.proxy.c_m;
@@ -167,11 +198,11 @@ TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task
   };
 }
 
-io::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml) {
-  io::PanBank bank;
+model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml) {
+  model::PanBank bank;
   bank.header = pan_header(spec);
   for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) {
-    io::PanProxy proxy;
+    model::PanProxy proxy;
     proxy.b_m = spec.proxies_bc_m[p][0];
     proxy.c_m = spec.proxies_bc_m[p][1];
     proxy.delay_steps = proxy_delay_steps(spec, p);
@@ -228,13 +259,11 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
     for (std::size_t d = 0; d < directions.size(); ++d) {
       std::vector<const float*> series;
       for (std::size_t i = 0; i < m; ++i) series.push_back(raw.series[f].data() + (d * m + i) * ns);
-      auto terms = fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d]);
-      dirs.push_back({std::move(terms.index), std::move(terms.value)});
+      dirs.push_back(fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d]));
     }
     out.extra_series.emplace_back(raw.series[f].begin() + static_cast<std::ptrdiff_t>(n_fitted * ns), raw.series[f].end());
   }
   return out;
 }
-
 
 }  // namespace clatter::jobs

@@ -12,8 +12,7 @@
 #include "io/pan_bank.hpp"
 #include "jobs/solve_job.hpp"
 #include "jobs/sweep.hpp"
-#include "kernels/pan/field.hpp"
-#include "synth/sources.hpp"
+#include "model/pan_bank.hpp"
 
 namespace clatter::jobs {
 
@@ -34,19 +33,40 @@ struct PanSpec {
   std::uint32_t length = 0;            // wavelet length T
 };
 
-// Throws InputError for any invalid combination.
+// The parameters of a PAN bank as the user gives them: one field per key of pan_schema(), named
+// after it (section_key, with its unit); parse_pan_params has checked the schema's types and ranges.
+struct PanParams {
+  double medium_c_m_s = 0, medium_rho_kg_m3 = 0;
+  double pulse_h_s = 0;
+  double proxies_a_m = 0, proxies_grid_min_m = 0, proxies_grid_step_m = 0;
+  std::vector<std::array<double, 2>> proxies_list_m;  // (B, C); when given, replaces the grid
+  double grid_dx_m = 0;
+  int grid_pml_cells = 0;
+  double time_dt_s = 0, time_tail_s = 0;
+  std::vector<double> solve_fields;
+  std::vector<double> fit_radii_m;
+  int fit_terms = 0, fit_divisions = 0;
+  double fit_epsilon = 0;
+  int solver_cut_cell_samples = 0;
+};
+
+PanParams parse_pan_params(const io::Config& config);
+
+// Throws InputError for any invalid combination (the solve's checks included: make_solve_spec).
+PanSpec make_pan_spec(const PanParams& params);
+// make_pan_spec(parse_pan_params(config)).
 PanSpec make_pan_spec(const io::Config& config);
 
 // Solves one proxy (all ranks) and fits it (rank 0). `extra_listeners_m` are recorded too and
 // returned raw per field (validation); on other ranks the result is empty.
 struct ProxyResult {
-  io::PanProxy proxy;
+  model::PanProxy proxy;
   std::vector<std::vector<float>> extra_series;  // per field: [extra listener][sample]
 };
 ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                         const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s);
 
-io::PanBankHeader pan_header(const PanSpec& spec);
+model::PanBankHeader pan_header(const PanSpec& spec);
 // Per direction: the proxy's support-distance alignment (kernels/pan/fit.hpp).
 std::vector<std::int32_t> proxy_delay_steps(const PanSpec& spec, std::size_t proxy);
 
@@ -60,9 +80,6 @@ std::vector<PanTask> pan_tasks(const PanSpec& spec);
 // Solves and fits one task on `group`; the writer of its result on the group's rank 0.
 TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s);
 // The bank from a results folder: every task found done, the others listed as failed or missing.
-io::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml);
-
-// A fitted field as the evaluation library wants it (the synthesizer's conversion).
-using synth::proxy_field;
+model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml);
 
 }  // namespace clatter::jobs

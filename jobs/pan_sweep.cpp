@@ -44,7 +44,7 @@ int merge_and_write(MPI_Comm world, const PanSpec& spec, const std::string& resu
   mpi::agree(world, [&] {
     if (mpi::rank(world) != 0) return;
     Stage stage("merge");
-    const io::PanBank bank = merge_pan_results(spec, results_dir, config_toml);
+    const model::PanBank bank = merge_pan_results(spec, results_dir, config_toml);
     io::write_pan_bank(out, bank, command, config_toml, mpi::size(world));
     spdlog::info("merge: wrote {} ({} of {} tasks; {} failed, {} missing)", out,
                  bank.sweep.tasks_total - bank.sweep.failed.size() - bank.sweep.missing.size(), bank.sweep.tasks_total,

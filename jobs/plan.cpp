@@ -31,12 +31,12 @@ struct Calibration {
 // A small solve with the sweep's own physics and cell size: the body's bounding sphere plus a few
 // cells, so the per-cell costs (bulk, cut cells, layer) resemble a task's.
 Calibration calibrate(const io::Config& config, double given_rate) {
-  io::Config small = config;
-  const double dx = config.real("grid.dx_m"), a = config.real("proxies.a_m");
-  small.set(fmt::format("fit.radii_m=[{:.17g}, {:.17g}]", a + 2.5 * dx, a + 3 * dx));
-  small.set("fit.terms=1");
-  small.set(fmt::format("time.tail_s={:.17g}", 64 * config.real("time.dt_s")));
-  small.set("solve.fields=[1]");
+  PanParams small = parse_pan_params(config);
+  const double dx = small.grid_dx_m, a = small.proxies_a_m;
+  small.fit_radii_m = {a + 2.5 * dx, a + 3 * dx};
+  small.fit_terms = 1;
+  small.time_tail_s = 64 * small.time_dt_s;
+  small.solve_fields = {1};
   const PanSpec spec = make_pan_spec(small);
   Calibration c;
   const auto t0 = std::chrono::steady_clock::now();

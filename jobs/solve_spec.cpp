@@ -41,30 +41,55 @@ const io::Schema& solve_schema() {
   return schema;
 }
 
-SolveSpec make_solve_spec(const io::Config& config) {
+SolveParams parse_solve_params(const io::Config& config) {
+  SolveParams p;
+  p.medium_c_m_s = config.real("medium.c_m_s");
+  p.medium_rho_kg_m3 = config.real("medium.rho_kg_m3");
+  p.pulse_h_s = config.real("pulse.h_s");
+  p.object_kind = config.string("object.kind");
+  p.object_a_m = config.real("object.a_m");
+  p.object_b_m = config.real("object.b_m");
+  p.object_c_m = config.real("object.c_m");
+  p.grid_dx_m = config.real("grid.dx_m");
+  p.grid_half_width_m = config.real("grid.half_width_m");
+  p.grid_pml_cells = static_cast<int>(config.integer("grid.pml_cells"));
+  p.grid_octant = config.boolean("grid.octant");
+  p.time_dt_s = config.real("time.dt_s");
+  p.time_duration_s = config.real("time.duration_s");
+  p.solve_fields = config.reals("solve.fields");
+  const auto& pts = config.reals("listeners.points_m");
+  for (std::size_t i = 0; i + 2 < pts.size(); i += 3) p.listeners_points_m.push_back({pts[i], pts[i + 1], pts[i + 2]});
+  p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
+  p.solver_pml_reflection = config.real("solver.pml_reflection");
+  return p;
+}
+
+SolveSpec make_solve_spec(const io::Config& config) { return make_solve_spec(parse_solve_params(config)); }
+
+SolveSpec make_solve_spec(const SolveParams& in) {
   SolveSpec spec;
   fdtd::Problem& p = spec.problem;
-  p.c_m_s = config.real("medium.c_m_s");
-  p.rho_kg_m3 = config.real("medium.rho_kg_m3");
-  p.h_s = config.real("pulse.h_s");
-  p.dt_s = config.real("time.dt_s");
-  p.cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
-  p.pml_reflection = config.real("solver.pml_reflection");
-  const double dx = config.real("grid.dx_m");
-  const bool monopole = config.string("object.kind") == "monopole";
-  p.body = {config.real("object.a_m"), config.real("object.b_m"), config.real("object.c_m")};
+  p.c_m_s = in.medium_c_m_s;
+  p.rho_kg_m3 = in.medium_rho_kg_m3;
+  p.h_s = in.pulse_h_s;
+  p.dt_s = in.time_dt_s;
+  p.cut_cell_samples = in.solver_cut_cell_samples;
+  p.pml_reflection = in.solver_pml_reflection;
+  const double dx = in.grid_dx_m;
+  const bool monopole = in.object_kind == "monopole";
+  p.body = {in.object_a_m, in.object_b_m, in.object_c_m};
 
   const double limit = dx / (p.c_m_s * std::sqrt(3.0));
   if (p.dt_s > limit)
     throw InputError(fmt::format("config: key 'time.dt_s' = {}: violates the CFL limit dx / (c sqrt 3) = {:.6g} s "
                                  "(grid.dx_m = {}, medium.c_m_s = {})",
                                  p.dt_s, limit, dx, p.c_m_s));
-  const double half = config.real("grid.half_width_m");
+  const double half = in.grid_half_width_m;
   const int n_half = static_cast<int>(std::ceil(half / dx - 1e-9));
-  const int pml = static_cast<int>(config.integer("grid.pml_cells"));
+  const int pml = in.grid_pml_cells;
   p.grid.dx_m = dx;
   p.grid.pml = pml;
-  p.grid.octant = config.boolean("grid.octant");
+  p.grid.octant = in.grid_octant;
   const int n = p.grid.octant ? n_half + pml : 2 * (n_half + pml);
   p.grid.n = {n, n, n};
   if (!monopole) {
@@ -75,7 +100,7 @@ SolveSpec make_solve_spec(const io::Config& config) {
         throw InputError(fmt::format("config: key '{}' = {}: the ellipsoid must lie inside the domain with a cell to "
                                      "spare (grid.half_width_m = {} gives {} cells of {} m)",
                                      keys[a], r[a], half, n_half, dx));
-    for (double f : config.reals("solve.fields")) {
+    for (double f : in.solve_fields) {
       if (f != std::floor(f)) throw InputError(fmt::format("config: key 'solve.fields' has {}: not a field index 1-6", f));
       spec.fields.push_back(static_cast<int>(f));
     }
@@ -84,9 +109,8 @@ SolveSpec make_solve_spec(const io::Config& config) {
     spec.fields = {0};
   }
 
-  const auto& pts = config.reals("listeners.points_m");
-  if (pts.empty()) throw InputError("config: key 'listeners.points_m' is empty: give at least one point");
-  for (std::size_t i = 0; i + 2 < pts.size(); i += 3) spec.listeners_m.push_back({pts[i], pts[i + 1], pts[i + 2]});
+  if (in.listeners_points_m.empty()) throw InputError("config: key 'listeners.points_m' is empty: give at least one point");
+  spec.listeners_m = in.listeners_points_m;
   for (std::size_t l = 0; l < spec.listeners_m.size(); ++l) {
     fdtd::Problem probe = p;
     probe.field = monopole ? 0 : 1;
@@ -96,7 +120,7 @@ SolveSpec make_solve_spec(const io::Config& config) {
                                    x[2], *why));
   }
   spec.i_time_zero = static_cast<int>(std::ceil(2.0 * p.h_s / p.dt_s - 1e-9));
-  spec.n_samples = spec.i_time_zero + static_cast<int>(std::ceil(config.real("time.duration_s") / p.dt_s)) + 1;
+  spec.n_samples = spec.i_time_zero + static_cast<int>(std::ceil(in.time_duration_s / p.dt_s)) + 1;
   return spec;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
-// The input contract of `clatter-bank solve`: its config schema and the validated SolveSpec that
-// every FDTD solve (a solve job, or one proxy of a PAN sweep) runs from.
+// The input contract of `clatter-bank solve`: its config schema, the user's parameters parsed from
+// it (SolveParams), and the validated SolveSpec that every FDTD solve (a solve job, or one proxy of
+// a PAN sweep) runs from. Parsing (config -> SolveParams) is apart from validation (SolveParams ->
+// SolveSpec), so a PAN sweep builds its solve's parameters as a struct.
 #include <array>
+#include <string>
 #include <vector>
 
 #include "io/config.hpp"
@@ -14,6 +17,26 @@ const io::Schema& solve_schema();
 inline constexpr const char* kRawFormat = "clatter-fdtd-raw";
 inline constexpr int kRawFormatVersion = 2;
 
+// The parameters of a solve as the user gives them: one field per key of solve_schema(), named
+// after it (section_key, with its unit). parse_solve_params has checked only the schema's types and
+// ranges; the defaults are parse_solve_params(io::Config(solve_schema())).
+struct SolveParams {
+  double medium_c_m_s = 0, medium_rho_kg_m3 = 0;
+  double pulse_h_s = 0;
+  std::string object_kind;  // "ellipsoid" or "monopole"
+  double object_a_m = 0, object_b_m = 0, object_c_m = 0;
+  double grid_dx_m = 0, grid_half_width_m = 0;
+  int grid_pml_cells = 0;
+  bool grid_octant = true;
+  double time_dt_s = 0, time_duration_s = 0;
+  std::vector<double> solve_fields;  // as given (make_solve_spec checks they are whole)
+  std::vector<std::array<double, 3>> listeners_points_m;
+  int solver_cut_cell_samples = 0;
+  double solver_pml_reflection = 0;
+};
+
+SolveParams parse_solve_params(const io::Config& config);
+
 // A validated solve: everything is checked here, before any stepping.
 struct SolveSpec {
   kernels::fdtd::Problem problem;  // field set per solve
@@ -24,6 +47,8 @@ struct SolveSpec {
 };
 
 // Throws InputError naming the key and value for any invalid combination.
+SolveSpec make_solve_spec(const SolveParams& params);
+// make_solve_spec(parse_solve_params(config)).
 SolveSpec make_solve_spec(const io::Config& config);
 
 }  // namespace clatter::jobs

@@ -6,47 +6,22 @@
 #include <limits>
 
 #include "core/errors.hpp"
+#include "io/pan_bank.hpp"
 #include "kernels/pan/render.hpp"
 
 namespace clatter::synth {
 
-kernels::pan::ProxyField proxy_field(const io::PanBankHeader& h, const io::PanProxy& proxy, int field) {
-  kernels::pan::ProxyField f;
-  f.field = field;
-  f.terms = h.terms;
-  f.length = h.length;
-  f.dt_s = h.dt_s;
-  f.t_first_s = h.t_first_s;
-  f.c_m_s = h.c_m_s;
-  for (const auto& d : proxy.fields.at(static_cast<std::size_t>(field - 1))) f.directions.push_back({d.index, d.value});
-  f.delay_steps.assign(proxy.delay_steps.begin(), proxy.delay_steps.end());
-  return f;
-}
-
-PanSource::PanSource(const std::string& bank_path) : path_(bank_path) {
-  io::PanBank bank = io::read_pan_bank(bank_path);
-  header_ = bank.header;
-  proxies_ = std::move(bank.proxies);
-  for (const auto& p : proxies_) {
-    std::array<kernels::pan::ProxyField, 6> f;
-    std::array<bool, 6> solved{};
-    for (int i = 1; i <= 6; ++i) {
-      solved[static_cast<std::size_t>(i - 1)] = p.fields[static_cast<std::size_t>(i - 1)].size() == header_.directions.size();
-      if (solved[static_cast<std::size_t>(i - 1)]) f[static_cast<std::size_t>(i - 1)] = proxy_field(header_, p, i);
-    }
-    fields_.push_back(std::move(f));
-    solved_.push_back(solved);
-  }
-  if (proxies_.empty()) throw InputError(bank_path + ": the bank holds no proxies");
+PanSource::PanSource(const std::string& bank_path) : path_(bank_path), bank_(io::read_pan_bank(bank_path)) {
+  if (bank_.proxies.empty()) throw InputError(bank_path + ": the bank holds no proxies");
 }
 
 std::size_t PanSource::nearest_proxy(const kernels::ProxyFit& fit) const {
   // Shapes compare at the bank's A: (B, C) = A (b, c) / a.
-  const double b = header_.a_m * fit.b_m / fit.a_m, c = header_.a_m * fit.c_m / fit.a_m;
+  const double b = bank_.header.a_m * fit.b_m / fit.a_m, c = bank_.header.a_m * fit.c_m / fit.a_m;
   std::size_t best = 0;
   double best_d = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < proxies_.size(); ++i) {
-    const double db = proxies_[i].b_m - b, dc = proxies_[i].c_m - c, d = db * db + dc * dc;  // per impact: no hypot
+  for (std::size_t i = 0; i < bank_.proxies.size(); ++i) {
+    const double db = bank_.proxies[i].b_m - b, dc = bank_.proxies[i].c_m - c, d = db * db + dc * dc;  // per impact: no hypot
     if (d < best_d) best_d = d, best = i;
   }
   return best;
@@ -55,7 +30,7 @@ std::size_t PanSource::nearest_proxy(const kernels::ProxyFit& fit) const {
 void PanSource::add(const Impact& im, const Vec3& listener, int rate_hz, std::vector<double>& out) const {
   const auto& fit = im.model->proxy;
   const std::size_t p = nearest_proxy(fit);
-  const double beta = fit.a_m / header_.a_m;
+  const double beta = fit.a_m / bank_.header.a_m;
   // Listener and accelerations in the proxy frame (its axes are the body's principal axes).
   const Vec3& x0 = im.pose.position_m;
   const Vec3 body = rotate_inverse(im.pose.orientation_wxyz, {listener[0] - x0[0], listener[1] - x0[1], listener[2] - x0[2]});
@@ -71,13 +46,11 @@ void PanSource::add(const Impact& im, const Vec3& listener, int rate_hz, std::ve
   kernels::pan::HalfSineAcceleration a;
   a.t0_s = im.t_s;
   a.tau_s = im.tau_s;
-  std::array<const kernels::pan::ProxyField*, 6> fields{};
   for (std::size_t i = 0; i < 3; ++i) {
     a.peak[i] = f * n[i] / m;                                  // translation, eq. (9) fields 1-3
     a.peak[3 + i] = f * torque[i] / fit.moments_kg_m2[i];      // rotation about the principal axes
   }
-  for (std::size_t i = 0; i < 6; ++i) fields[i] = solved_[p][i] ? &fields_[p][i] : nullptr;
-  kernels::pan::render_impact(fields, beta, header_.h_s, lp, a, rate_hz, 0.0, out);
+  kernels::pan::render_impact(bank_.header, bank_.proxies[p], beta, bank_.header.h_s, lp, a, rate_hz, 0.0, out);
 }
 
 }  // namespace clatter::synth

@@ -8,10 +8,9 @@
 #include <vector>
 
 #include "core/rotation.hpp"
-#include "io/pan_bank.hpp"
 #include "io/scene.hpp"
-#include "kernels/pan/field.hpp"
 #include "kernels/rigid_body.hpp"
+#include "model/pan_bank.hpp"
 
 namespace clatter::synth {
 
@@ -50,13 +49,7 @@ class PanSource : public SoundSource {
   std::size_t nearest_proxy(const kernels::ProxyFit& fit) const;  // closest (B, C) at the bank's A
 
   std::string path_;
-  io::PanBankHeader header_;
-  std::vector<io::PanProxy> proxies_;
-  std::vector<std::array<kernels::pan::ProxyField, 6>> fields_;
-  std::vector<std::array<bool, 6>> solved_;
+  model::PanBank bank_;  // as read, evaluated in place (kernels/pan)
 };
-
-// The field of one proxy as the evaluation library wants it (shared with clatter-bank).
-kernels::pan::ProxyField proxy_field(const io::PanBankHeader& header, const io::PanProxy& proxy, int field);
 
 }  // namespace clatter::synth

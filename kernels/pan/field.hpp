@@ -7,18 +7,16 @@
 
 #include "kernels/pan/directions.hpp"
 #include "kernels/pan/fit.hpp"
+#include "model/pan_bank.hpp"
 
 namespace clatter::kernels::pan {
 
-struct ProxyField {
-  int field = 1;            // 1..6 (eq. 9)
-  int terms = 2;            // N
-  std::size_t length = 0;   // T, wavelet length (power of two)
-  double dt_s = 0;          // sample interval of q_k: 1 / (PAN sample rate)
-  double t_first_s = 0;     // retarded time t - R/c of sample 0 (t = 0: centre of psi)
-  double c_m_s = 343.2;
-  std::vector<SparseTerms> directions;  // one per direction vertex (45)
-  std::vector<int> delay_steps;         // per vertex: its alignment advance (support_delay_steps)
+// One field of one proxy of a bank, as the evaluator reads it: a view into the bank (header
+// scalars, the proxy's delays and sparse terms), nothing copied. Both must outlive the view.
+struct FieldView {
+  const model::PanBankHeader* bank = nullptr;
+  const model::PanProxy* proxy = nullptr;
+  int field = 1;  // 1..6 (eq. 9)
 };
 
 struct Series {
@@ -28,14 +26,14 @@ struct Series {
 };
 
 // output_rate_hz = 0: the full PAN rate. The caller checks that |x| / beta lies outside the
-// unscaled proxy's bounding sphere (where the series (8) holds).
-Series evaluate(const ProxyField& f, const std::array<double, 3>& x_m, double beta = 1.0, double output_rate_hz = 0.0,
+// unscaled proxy's bounding sphere (where the series (8) holds). The field must be solved.
+Series evaluate(const FieldView& f, const std::array<double, 3>& x_m, double beta = 1.0, double output_rate_hz = 0.0,
                 Interpolation interpolation = Interpolation::quadratic);
 
-// sum_i weight_i p_i^(beta h)(x, t) over several fields of one proxy (null entries are skipped),
-// added in coefficient space: one inverse transform whatever the number of fields. The fields must
-// come from one proxy of one bank (same length, rate, time origin, directions and delays).
-Series evaluate_sum(const std::array<const ProxyField*, 6>& fields, const std::array<double, 6>& weights,
+// sum_i weight_i p_i^(beta h)(x, t) over the fields of one proxy of `bank` (fields not solved and
+// zero weights are skipped), added in coefficient space: one inverse transform whatever the number
+// of fields. weights[i] is field i + 1's.
+Series evaluate_sum(const model::PanBankHeader& bank, const model::PanProxy& proxy, const std::array<double, 6>& weights,
                     const std::array<double, 3>& x_m, double beta = 1.0, double output_rate_hz = 0.0,
                     Interpolation interpolation = Interpolation::quadratic);
 

@@ -26,7 +26,7 @@ int support_delay_steps(const std::array<double, 3>& d, double a_m, double b_m, 
   return static_cast<int>(std::lround(h / (c_m_s * dt_s)));
 }
 
-SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon,
+model::SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon,
                         int delay_steps) const {
   const std::size_t m = radii_m_.size(), n = wavelet_.length();
   if (series.size() != m) throw std::invalid_argument("PAN fit: one series per radius");
@@ -43,7 +43,7 @@ SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_s
     wavelet_.forward(coef[i]);
     for (double c : coef[i]) peak[i] = std::max(peak[i], std::abs(c));
   }
-  SparseTerms out;
+  model::SparseTerms out;
   for (std::size_t j = 0; j < n; ++j) {
     bool keep = false;
     for (std::size_t i = 0; i < m && !keep; ++i) keep = peak[i] > 0 && std::abs(coef[i][j]) >= epsilon * peak[i];
@@ -58,7 +58,7 @@ SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_s
   return out;
 }
 
-void accumulate(const SparseTerms& terms, int n_terms, double radius_m, double weight, std::vector<double>& coefficients) {
+void accumulate(const model::SparseTerms& terms, int n_terms, double radius_m, double weight, std::vector<double>& coefficients) {
   // Called per vertex and field for every impact the synthesizer renders: no allocation, no pow.
   std::array<double, 8> scale{};
   if (n_terms < 1 || n_terms > static_cast<int>(scale.size())) throw std::invalid_argument("PAN accumulate: 1 to 8 terms");

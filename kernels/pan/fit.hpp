@@ -10,14 +10,9 @@
 #include <vector>
 
 #include "kernels/pan/wavelet.hpp"
+#include "model/pan_bank.hpp"
 
 namespace clatter::kernels::pan {
-
-// Sparse wavelet coefficients of q_1..q_N in one direction.
-struct SparseTerms {
-  std::vector<std::uint32_t> index;  // kept j, ascending
-  std::vector<float> value;          // [kept][N]: q^_1^j .. q^_N^j
-};
 
 class Fitter {
  public:
@@ -26,7 +21,8 @@ class Fitter {
 
   // series[i]: p(R_i, t_n) for n = 0 .. n_samples-1 (t_n = t_first + n dt). `delay_steps` aligns
   // this direction further: coefficient sample n is p(R_i, t_first + (n + shift_i - delay) dt).
-  SparseTerms fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon,
+  // The result is one direction of a bank's field as stored (model/pan_bank.hpp).
+  model::SparseTerms fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon,
                   int delay_steps = 0) const;
 
   int terms() const { return terms_; }
@@ -49,6 +45,6 @@ int support_delay_steps(const std::array<double, 3>& direction, double a_m, doub
 
 // Adds w * sum_k R^-k q^_k into `coefficients` (length T): the wavelet coefficients of the
 // shifted pressure p(R, t + R/c) contributed by one direction vertex with weight w.
-void accumulate(const SparseTerms& terms, int n_terms, double radius_m, double weight, std::vector<double>& coefficients);
+void accumulate(const model::SparseTerms& terms, int n_terms, double radius_m, double weight, std::vector<double>& coefficients);
 
 }  // namespace clatter::kernels::pan

@@ -23,8 +23,8 @@ namespace {
 
 bool root() { return mpi::rank(MPI_COMM_WORLD) == 0; }
 
-io::PanProxy through_file(const jobs::PanSpec& spec, const io::PanProxy& proxy, const std::string& name) {
-  io::PanBank bank;
+model::PanProxy through_file(const jobs::PanSpec& spec, const model::PanProxy& proxy, const std::string& name) {
+  model::PanBank bank;
   bank.header = jobs::pan_header(spec);
   bank.proxies.push_back(proxy);
   const std::string path = (std::filesystem::current_path() / name).string();
@@ -37,16 +37,19 @@ io::PanProxy through_file(const jobs::PanSpec& spec, const io::PanProxy& proxy, 
 // on non-root ranks the field is empty (the solve is collective, the checks run on rank 0).
 struct SphereProxy {
   jobs::PanSpec spec;
-  kernels::pan::ProxyField field;
+  model::PanBankHeader bank;
+  model::PanProxy proxy;
+  kernels::pan::FieldView field() const { return {&bank, &proxy, 1}; }
 };
 SphereProxy sphere_proxy(const std::string& file) {
   io::Config config(jobs::pan_schema());
   config.set("proxies.list_m=[[0.5, 0.5]]");
   config.set("grid.dx_m=0.03");
   config.set("solve.fields=[1]");
-  SphereProxy out{jobs::make_pan_spec(config), {}};
+  SphereProxy out{jobs::make_pan_spec(config), {}, {}};
+  out.bank = jobs::pan_header(out.spec);
   auto result = jobs::build_proxy(MPI_COMM_WORLD, out.spec, 0, {}, 0.0);
-  if (root()) out.field = jobs::proxy_field(jobs::pan_header(out.spec), through_file(out.spec, result.proxy, file), 1);
+  if (root()) out.proxy = through_file(out.spec, result.proxy, file);
   return out;
 }
 
@@ -96,7 +99,7 @@ std::vector<double> held_out_errors(int divisions, kernels::pan::Interpolation i
     std::printf("%2d divisions, %-9s field %d, relative L2 at r =", divisions,
                 interpolation == kernels::pan::Interpolation::linear ? "linear," : "quadratic,", field);
     for (std::size_t l = 0; l < points.size(); ++l) {
-      const auto s = kernels::pan::evaluate(jobs::proxy_field(header, proxy, field), points[l], 1.0, 0.0, interpolation);
+      const auto s = kernels::pan::evaluate({&header, &proxy, field}, points[l], 1.0, 0.0, interpolation);
       // PAN sample k is at t0 + k dt; t0 is a whole number of steps from raw sample 0 up to the
       // interpolated direction delay, rounded here (both series are smooth at this rate).
       const long offset = std::lround((s.t0_s + spec.solve.i_time_zero * dt) / dt);
@@ -141,7 +144,7 @@ TEST(PanBank, SphereProxyReproducesTheExactTranslatingSphere) {
   const auto& radii = sphere.spec.radii_m;
   for (double r : {0.5 * (radii[1] + radii[2]), 3 * radii.back()}) {
     const std::array<double, 3> x{0.6 * r, 0.48 * r, 0.64 * r};  // |x| = r, cos(theta_x) = 0.6
-    const auto s = kernels::pan::evaluate(sphere.field, x);
+    const auto s = kernels::pan::evaluate(sphere.field(), x);
     // Field 1 translates along x: the dipole axis is x.
     const double err = relative_l2(s.p, [&](std::size_t k) { return exact.pressure(r, 0.6, s.t0_s + static_cast<double>(k) * s.dt_s); });
     std::printf("sphere proxy at r = %.3f m: relative L2 %.4f vs the exact solution\n", r, err);
@@ -174,7 +177,7 @@ TEST(PanRender, HalfSineImpactOnASphereMatchesTheExactTranslatingSphere) {
   const HalfSine hs{a.peak[0], a.t0_s, a.tau_s};
   for (const std::array<double, 3> x : {std::array<double, 3>{0.6, 0.48, 0.64}, {-0.8, 0.0, 0.6}}) {
     std::vector<double> out(static_cast<std::size_t>(0.012 * rate), 0.0);
-    kernels::pan::render_impact({&sphere.field, nullptr, nullptr, nullptr, nullptr, nullptr}, beta, p.h_s, x, a, rate, 0.0, out);
+    kernels::pan::render_impact(sphere.bank, sphere.proxy, beta, p.h_s, x, a, rate, 0.0, out);
     const double err = relative_l2(out, [&](std::size_t n) {
       return reference::translating_sphere_pressure(radius, p.c_m_s, p.rho_kg_m3, 1.0, x[0], static_cast<double>(n) / rate,
                                                     half_sine_acceleration, &hs, a.t0_s, a.t0_s + a.tau_s, 8);
@@ -195,7 +198,7 @@ TEST(Synth, SingleImpulseOnASphereMatchesTheExactTranslatingSphere) {
   config.set("grid.dx_m=0.03");
   config.set("solve.fields=[1, 2, 3]");
   const auto spec = jobs::make_pan_spec(config);
-  io::PanBank bank;
+  model::PanBank bank;
   bank.header = jobs::pan_header(spec);
   for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) bank.proxies.push_back(jobs::build_proxy(MPI_COMM_WORLD, spec, p, {}, 0.0).proxy);
   if (!root()) return;

@@ -32,9 +32,14 @@ double p_exact(const std::array<double, 3>& d, double r, double t) {
   return q(1, d, tr) / r + q(2, d, tr) / (r * r);
 }
 
+// A one-proxy bank holding one fitted field.
 struct Built {
-  ProxyField field;
+  clatter::model::PanBankHeader bank;
+  clatter::model::PanProxy proxy;
+  int field = 1;
   std::vector<int> shifts;
+  FieldView view() const { return {&bank, &proxy, field}; }
+  const std::vector<clatter::model::SparseTerms>& terms() const { return proxy.field(field); }
 };
 
 Built build(double epsilon, int field_index = 1) {
@@ -45,13 +50,16 @@ Built build(double epsilon, int field_index = 1) {
   const std::size_t n_samples = 550 + 200;
   const std::size_t length = next_power_of_two(n_samples - 180);
   Fitter fitter(radii, shifts, 2, length);
-  ProxyField f;
-  f.field = field_index;
-  f.terms = 2;
-  f.length = length;
-  f.dt_s = kDt;
-  f.t_first_s = -i0 * kDt;
-  f.c_m_s = kC;
+  Built b;
+  b.field = field_index;
+  b.shifts = shifts;
+  b.bank.terms = 2;
+  b.bank.length = static_cast<std::uint32_t>(length);
+  b.bank.dt_s = kDt;
+  b.bank.t_first_s = -i0 * kDt;
+  b.bank.c_m_s = kC;
+  b.bank.directions = direction_vertices();
+  auto& terms = b.proxy.fields[static_cast<std::size_t>(field_index - 1)];
   for (const auto& d : direction_vertices()) {
     std::vector<std::vector<float>> series(radii.size(), std::vector<float>(n_samples));
     std::vector<const float*> ptr;
@@ -60,9 +68,9 @@ Built build(double epsilon, int field_index = 1) {
         series[i][n] = static_cast<float>(p_exact(d, radii[i], (static_cast<double>(n) - i0) * kDt));
       ptr.push_back(series[i].data());
     }
-    f.directions.push_back(fitter.fit(ptr, n_samples, epsilon));
+    terms.push_back(fitter.fit(ptr, n_samples, epsilon));
   }
-  return {f, shifts};
+  return b;
 }
 
 double relative_l2(const Series& s, const std::array<double, 3>& x, double sign = 1.0) {
@@ -144,7 +152,7 @@ TEST(PanFit, ExactSeriesIsRecoveredAtAHeldOutRadiusAndDirection) {
     const std::array<double, 3> d{0.37, 0.52, 0.77};
     const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     const std::array<double, 3> x{r * d[0] / n, r * d[1] / n, r * d[2] / n};
-    const double err = relative_l2(evaluate(b.field, x), x);
+    const double err = relative_l2(evaluate(b.view(), x), x);
     // q is linear in the gnomonic coordinates, so barycentric interpolation is exact; what is
     // left is float storage of the series.
     EXPECT_LT(err, 1e-5) << "r = " << r;
@@ -154,20 +162,20 @@ TEST(PanFit, ExactSeriesIsRecoveredAtAHeldOutRadiusAndDirection) {
 TEST(PanFit, ThresholdKeepsFewCoefficientsAndStaysAccurate) {
   const auto full = build(0.0), sparse = build(0.01);
   std::size_t kept_full = 0, kept_sparse = 0;
-  for (std::size_t i = 0; i < full.field.directions.size(); ++i) {
-    kept_full += full.field.directions[i].index.size();
-    kept_sparse += sparse.field.directions[i].index.size();
+  for (std::size_t i = 0; i < full.terms().size(); ++i) {
+    kept_full += full.terms()[i].index.size();
+    kept_sparse += sparse.terms()[i].index.size();
   }
   EXPECT_LT(kept_sparse * 4, kept_full);
   const std::array<double, 3> x{0.5, 0.6, 0.7};
-  EXPECT_LT(relative_l2(evaluate(sparse.field, x), x), 0.02);
+  EXPECT_LT(relative_l2(evaluate(sparse.view(), x), x), 0.02);
 }
 
 TEST(PanField, OctantSymmetriesFollowTheFieldParity) {
   for (int field = 1; field <= 6; ++field) {
     const auto b = build(0.0, field);
     const std::array<double, 3> x{0.61, 0.42, 0.83};
-    const Series base = evaluate(b.field, x);
+    const Series base = evaluate(b.view(), x);
     for (int m = 1; m < 8; ++m) {
       std::array<double, 3> y = x;
       double sign = 1;
@@ -176,7 +184,7 @@ TEST(PanField, OctantSymmetriesFollowTheFieldParity) {
           y[a] = -y[a];
           sign *= clatter::kernels::fdtd::field_parity(field, a);
         }
-      const Series s = evaluate(b.field, y);
+      const Series s = evaluate(b.view(), y);
       ASSERT_EQ(s.p.size(), base.p.size());
       for (std::size_t n = 0; n < s.p.size(); ++n) ASSERT_EQ(s.p[n], sign * base.p[n]) << field << " " << m;
     }
@@ -188,7 +196,7 @@ TEST(PanField, ScalingLawMatchesEquation10) {
     const auto b = build(0.0, field);
     const double beta = 0.37;
     const std::array<double, 3> x{0.3, 0.25, 0.2}, y{x[0] / beta, x[1] / beta, x[2] / beta};
-    const Series scaled = evaluate(b.field, x, beta), unscaled = evaluate(b.field, y);
+    const Series scaled = evaluate(b.view(), x, beta), unscaled = evaluate(b.view(), y);
     const double power = field <= 3 ? beta : beta * beta;
     ASSERT_EQ(scaled.p.size(), unscaled.p.size());
     EXPECT_NEAR(scaled.dt_s, beta * unscaled.dt_s, 1e-18);
@@ -204,8 +212,8 @@ TEST(PanField, ScalingLawMatchesEquation10) {
 TEST(PanField, Algorithm1ReconstructsNearTheOutputRate) {
   const auto b = build(0.0);
   const std::array<double, 3> x{0.6, 0.5, 0.7};
-  const Series full = evaluate(b.field, x);
-  const Series low = evaluate(b.field, x, 1.0, 20000.0);  // 96 kHz -> 48 kHz -> 24 kHz (within 2x of 20 kHz)
+  const Series full = evaluate(b.view(), x);
+  const Series low = evaluate(b.view(), x, 1.0, 20000.0);  // 96 kHz -> 48 kHz -> 24 kHz (within 2x of 20 kHz)
   EXPECT_NEAR(1.0 / low.dt_s, 24000.0, 1e-6);
   EXPECT_EQ(low.p.size() * 4, full.p.size());
   // The coarse series follows the smooth signal (pulse content is below 10 kHz).
@@ -217,9 +225,11 @@ TEST(PanField, FieldsAddInCoefficientSpace) {
   const auto f1 = build(0.0, 1), f5 = build(0.0, 5);
   const std::array<double, 3> x{-0.41, 0.52, 0.73};
   const double beta = 0.3, w1 = 2.5, w5 = -40.0;
-  const Series sum = evaluate_sum({&f1.field, nullptr, nullptr, nullptr, &f5.field, nullptr}, {w1, 0, 0, 0, w5, 0}, x,
-                                  beta, 44100);
-  const Series a = evaluate(f1.field, x, beta, 44100), b = evaluate(f5.field, x, beta, 44100);
+  clatter::model::PanProxy both;  // fields 1 and 5 of one proxy
+  both.fields[0] = f1.terms();
+  both.fields[4] = f5.terms();
+  const Series sum = evaluate_sum(f1.bank, both, {w1, 0, 0, 0, w5, 0}, x, beta, 44100);
+  const Series a = evaluate(f1.view(), x, beta, 44100), b = evaluate(f5.view(), x, beta, 44100);
   ASSERT_EQ(sum.p.size(), a.p.size());
   double peak = 0;
   for (std::size_t n = 0; n < a.p.size(); ++n) peak = std::max(peak, std::abs(w1 * a.p[n] + w5 * b.p[n]));
@@ -266,9 +276,7 @@ TEST(PanRender, AScaledObjectFollowsEquation10) {
   // same level choice for both, so the samples agree to round-off.
   for (int field : {2, 6}) {
     const auto b = build(0.0, field);
-    std::array<const ProxyField*, 6> fields{};
-    fields[static_cast<std::size_t>(field - 1)] = &b.field;
-    const double beta = 0.1, gamma = 2.5, h = b.field.dt_s * 2, rate = 44100;
+    const double beta = 0.1, gamma = 2.5, h = b.bank.dt_s * 2, rate = 44100;
     const std::array<double, 3> x{0.3, -0.4, 0.5};
     HalfSineAcceleration a;
     a.t0_s = 0.001;
@@ -278,8 +286,8 @@ TEST(PanRender, AScaledObjectFollowsEquation10) {
     a2.t0_s *= gamma;
     a2.tau_s *= gamma;
     std::vector<double> one(400, 0.0), two(400, 0.0);
-    render_impact(fields, beta, h, x, a, rate, 0.0, one);
-    render_impact(fields, gamma * beta, h, {gamma * x[0], gamma * x[1], gamma * x[2]}, a2, rate / gamma, 0.0, two);
+    render_impact(b.bank, b.proxy, beta, h, x, a, rate, 0.0, one);
+    render_impact(b.bank, b.proxy, gamma * beta, h, {gamma * x[0], gamma * x[1], gamma * x[2]}, a2, rate / gamma, 0.0, two);
     const double power = field <= 3 ? gamma : gamma * gamma;
     double peak = 0;
     for (double v : one) peak = std::max(peak, std::abs(v));
