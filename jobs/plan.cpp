@@ -73,69 +73,100 @@ void write_script(const std::string& path, const std::string& text) {
   fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec, fs::perm_options::add);
 }
 
-}  // namespace
+// The cost model. Tasks are equal in size: the sweep takes `waves` task times; ranks of a group
+// split the cells.
+struct PlanCost {
+  double cells = 0;    // per task
+  int steps = 0;
+  double updates = 0;  // cell-updates per task
+  Calibration cal;
+  int groups = 0;
+  std::size_t waves = 0;
+  double task_s = 0, wall_s = 0, limit_s = 0;
+  double listener_bytes = 0, rank_bytes = 0;  // rank_bytes: per rank, the listener records counted
+  int cores = 0, nodes = 0;                    // cores per node, nodes of the job
+};
 
-std::string run_plan(const io::Config& config, const PlanOptions& o) {
-  const PanSpec spec = make_pan_spec(config);
-  if (o.ranks < 1 || o.ranks_per_task < 1 || o.ranks % o.ranks_per_task != 0)
-    throw InputError(fmt::format("--ranks {} --ranks-per-task {}: the ranks per task must divide the ranks", o.ranks,
-                                 o.ranks_per_task));
-  const auto tasks = pan_tasks(spec);
+PlanCost plan_cost(const io::Config& config, const PanSpec& spec, std::size_t n_tasks, const PlanOptions& o) {
+  PlanCost c;
   const auto& g = spec.solve.problem.grid;
-  const double cells = static_cast<double>(g.n[0]) * g.n[1] * g.n[2];
-  const int steps = spec.solve.n_samples - 1;
-  const double updates = cells * steps;
-  const Calibration cal = calibrate(config, o.rate);
-  const int groups = o.ranks / o.ranks_per_task;
-  const std::size_t waves = (tasks.size() + static_cast<std::size_t>(groups) - 1) / static_cast<std::size_t>(groups);
-  // Tasks are equal in size: the sweep takes `waves` task times; ranks of a group split the cells.
-  const double task_s = updates / (cal.rate * o.ranks_per_task);
-  const double wall_s = static_cast<double>(waves) * task_s;
-  const double limit_s = 1.5 * wall_s + 600;  // margin for slower nodes and queue start-up, plus the 120 s signal
-  const double listener_bytes = static_cast<double>(spec.solve.listeners_m.size()) * 8 * spec.solve.n_samples * 4;
-  const double rank_bytes = cal.bytes_per_cell * cells / o.ranks_per_task + listener_bytes;
-  const int cores = o.cores_per_node > 0 ? o.cores_per_node : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int nodes = (o.ranks + cores - 1) / cores;
-  const std::string results = o.results.empty() ? o.out + ".tasks" : o.results;
+  c.cells = static_cast<double>(g.n[0]) * g.n[1] * g.n[2];
+  c.steps = spec.solve.n_samples - 1;
+  c.updates = c.cells * c.steps;
+  c.cal = calibrate(config, o.rate);
+  c.groups = o.ranks / o.ranks_per_task;
+  c.waves = (n_tasks + static_cast<std::size_t>(c.groups) - 1) / static_cast<std::size_t>(c.groups);
+  c.task_s = c.updates / (c.cal.rate * o.ranks_per_task);
+  c.wall_s = static_cast<double>(c.waves) * c.task_s;
+  c.limit_s = 1.5 * c.wall_s + 600;  // margin for slower nodes and queue start-up, plus the 120 s signal
+  c.listener_bytes = static_cast<double>(spec.solve.listeners_m.size()) * 8 * spec.solve.n_samples * 4;
+  c.rank_bytes = c.cal.bytes_per_cell * c.cells / o.ranks_per_task + c.listener_bytes;
+  c.cores = o.cores_per_node > 0 ? o.cores_per_node : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  c.nodes = (o.ranks + c.cores - 1) / c.cores;
+  return c;
+}
 
+// The plan as printed: the sweep, the cost per task and of the job, and every task.
+std::string plan_report(const PanSpec& spec, const std::vector<PanTask>& tasks, const PlanOptions& o, const PlanCost& c) {
+  const auto& g = spec.solve.problem.grid;
   std::string out = fmt::format("plan: {}: {} proxies x {} fields = {} tasks\n", o.config_path.empty() ? "defaults" : o.config_path,
                                 spec.proxies_bc_m.size(), spec.solve.fields.size(), tasks.size());
   out += fmt::format("  per task:    {} grid {}x{}x{} = {:.3g} M cells, {} steps: {:.3g} cell-updates\n",
-                     g.octant ? "octant" : "full", g.n[0], g.n[1], g.n[2], cells / 1e6, steps, updates);
+                     g.octant ? "octant" : "full", g.n[0], g.n[1], g.n[2], c.cells / 1e6, c.steps, c.updates);
   out += fmt::format("  memory:      {:.1f} bytes/cell -> {:.0f} MiB per rank with {} rank(s) per task (+ {:.0f} MiB of "
                      "listener records on each group's rank 0, counted)\n",
-                     cal.bytes_per_cell, rank_bytes / 1048576.0, o.ranks_per_task, listener_bytes / 1048576.0);
-  out += fmt::format("  calibration: {:.3g} cell-updates/s per rank ({})\n", cal.rate, cal.how);
+                     c.cal.bytes_per_cell, c.rank_bytes / 1048576.0, o.ranks_per_task, c.listener_bytes / 1048576.0);
+  out += fmt::format("  calibration: {:.3g} cell-updates/s per rank ({})\n", c.cal.rate, c.cal.how);
   out += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}; {} waves of {} per task\n",
-                     o.ranks, nodes, cores, groups, o.ranks_per_task, waves, clock_text(task_s));
-  out += fmt::format("  predicted:   {} wall; time limit with 1.5x margin + 10 min: {}\n", clock_text(wall_s),
-                     clock_text(limit_s));
+                     o.ranks, c.nodes, c.cores, c.groups, o.ranks_per_task, c.waves, clock_text(c.task_s));
+  out += fmt::format("  predicted:   {} wall; time limit with 1.5x margin + 10 min: {}\n", clock_text(c.wall_s),
+                     clock_text(c.limit_s));
   out += "  tasks:\n";
   for (const auto& t : tasks)
     out += fmt::format("    {}  (B, C) = ({:.4g}, {:.4g}) m  field {}  {:.3g} cell-updates\n", t.name,
-                       spec.proxies_bc_m[t.proxy][0], spec.proxies_bc_m[t.proxy][1], t.field, updates);
+                       spec.proxies_bc_m[t.proxy][0], spec.proxies_bc_m[t.proxy][1], t.field, c.updates);
+  return out;
+}
 
-  if (!o.sbatch.empty()) {
-    // The job reads exactly the planned config (file and --set overrides), frozen next to the script.
-    PlanOptions job = o;
-    job.config_path = fs::absolute(o.sbatch + ".toml").string();
-    {
-      std::ofstream toml(job.config_path);
-      toml << config.to_toml();
-      if (!toml) throw InputError(fmt::format("--sbatch {}: cannot write {}", o.sbatch, job.config_path));
-    }
-    const std::string header = fmt::format(
-        "#!/bin/bash\n# Written by clatter-bank plan for {} ({} tasks; predicted {} on {} ranks).\n", job.config_path,
-        tasks.size(), clock_text(wall_s), o.ranks);
-    // One sweep job: the whole bank, or (array) one slice of it per element. Either way it requeues
-    // itself when interrupted (exit 3) and every start resumes.
-    const bool array = o.array > 0;
-    const std::size_t per_element =
-        array ? (tasks.size() + static_cast<std::size_t>(o.array) - 1) / static_cast<std::size_t>(o.array) : tasks.size();
-    const std::size_t job_waves = (per_element + static_cast<std::size_t>(groups) - 1) / static_cast<std::size_t>(groups);
-    const double job_limit_s = 1.5 * static_cast<double>(job_waves) * task_s + 600;
-    write_script(o.sbatch,
-                 header + fmt::format(R"(#SBATCH --job-name=clatter-pan{}
+// The job reads exactly the planned config (file and --set overrides), frozen next to the script;
+// returns the options of the job, reading that copy.
+PlanOptions freeze_config(const io::Config& config, const PlanOptions& o) {
+  PlanOptions job = o;
+  job.config_path = fs::absolute(o.sbatch + ".toml").string();
+  std::ofstream toml(job.config_path);
+  toml << config.to_toml();
+  if (!toml) throw InputError(fmt::format("--sbatch {}: cannot write {}", o.sbatch, job.config_path));
+  return job;
+}
+
+void write_merge_script(const PlanOptions& o, const std::string& results) {
+  write_script(o.sbatch + ".merge", fmt::format(R"(#!/bin/bash
+# Merges the slices of {} into {} once every array element succeeded (--dependency=afterok).
+#SBATCH --job-name=clatter-pan-merge
+#SBATCH --ntasks=1
+#SBATCH --time=0:30:00
+#SBATCH --output=clatter-pan-merge-%j.out
+set -u
+srun --mpi=pmix {} merge --results {} --out {}
+)", o.sbatch, o.out, o.binary, results, o.out));
+}
+
+// Writes the sweep script (and with --array the merge script) and returns the report's lines on them.
+std::string write_sbatch_scripts(const io::Config& config, const PlanOptions& o, std::size_t n_tasks, const PlanCost& c) {
+  const std::string results = o.results.empty() ? o.out + ".tasks" : o.results;
+  const PlanOptions job = freeze_config(config, o);
+  const std::string header = fmt::format(
+      "#!/bin/bash\n# Written by clatter-bank plan for {} ({} tasks; predicted {} on {} ranks).\n", job.config_path,
+      n_tasks, clock_text(c.wall_s), o.ranks);
+  // One sweep job: the whole bank, or (array) one slice of it per element. Either way it requeues
+  // itself when interrupted (exit 3) and every start resumes.
+  const bool array = o.array > 0;
+  const std::size_t per_element =
+      array ? (n_tasks + static_cast<std::size_t>(o.array) - 1) / static_cast<std::size_t>(o.array) : n_tasks;
+  const std::size_t job_waves = (per_element + static_cast<std::size_t>(c.groups) - 1) / static_cast<std::size_t>(c.groups);
+  const double job_limit_s = 1.5 * static_cast<double>(job_waves) * c.task_s + 600;
+  write_script(o.sbatch,
+               header + fmt::format(R"(#SBATCH --job-name=clatter-pan{}
 {}#SBATCH --nodes={}
 #SBATCH --ntasks={}
 #SBATCH --time={}
@@ -147,31 +178,31 @@ set -u
 {}if [ "$rc" -eq 3 ]; then echo "clatter: interrupted (exit 3), requeueing"; scontrol requeue "{}"; fi
 exit "$rc"
 )",
-                                      array ? "-array" : "", array ? fmt::format("#SBATCH --array=0-{}\n", o.array - 1) : "",
-                                      nodes, o.ranks, clock_text(job_limit_s), array ? "%A_%a" : "%j",
-                                      run_block(sweep_command(
-                                          job, results, array ? " --slice ${SLURM_ARRAY_TASK_ID}/${SLURM_ARRAY_TASK_COUNT}" : "")),
-                                      array ? "${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}" : "$SLURM_JOB_ID"));
-    if (!array) {
-      out += fmt::format("  wrote {}: submit with `sbatch {}`\n", o.sbatch, o.sbatch);
-    } else {
-      write_script(o.sbatch + ".merge", fmt::format(R"(#!/bin/bash
-# Merges the slices of {} into {} once every array element succeeded (--dependency=afterok).
-#SBATCH --job-name=clatter-pan-merge
-#SBATCH --ntasks=1
-#SBATCH --time=0:30:00
-#SBATCH --output=clatter-pan-merge-%j.out
-set -u
-srun --mpi=pmix {} merge --results {} --out {}
-)", o.sbatch, o.out, o.binary, results, o.out));
-      out += fmt::format("  wrote {} ({} elements of ~{} tasks, limit {}) and {}.merge; submit with\n"
-                         "    jid=$(sbatch --parsable {}) && sbatch --dependency=afterok:${{jid%%;*}} {}.merge\n",
-                         o.sbatch, o.array, per_element, clock_text(job_limit_s), o.sbatch, o.sbatch, o.sbatch);
-    }
-  }
-  return out;
+                                    array ? "-array" : "", array ? fmt::format("#SBATCH --array=0-{}\n", o.array - 1) : "",
+                                    c.nodes, o.ranks, clock_text(job_limit_s), array ? "%A_%a" : "%j",
+                                    run_block(sweep_command(
+                                        job, results, array ? " --slice ${SLURM_ARRAY_TASK_ID}/${SLURM_ARRAY_TASK_COUNT}" : "")),
+                                    array ? "${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}" : "$SLURM_JOB_ID"));
+  if (!array) return fmt::format("  wrote {}: submit with `sbatch {}`\n", o.sbatch, o.sbatch);
+  write_merge_script(o, results);
+  return fmt::format("  wrote {} ({} elements of ~{} tasks, limit {}) and {}.merge; submit with\n"
+                     "    jid=$(sbatch --parsable {}) && sbatch --dependency=afterok:${{jid%%;*}} {}.merge\n",
+                     o.sbatch, o.array, per_element, clock_text(job_limit_s), o.sbatch, o.sbatch, o.sbatch);
 }
 
+}  // namespace
+
+std::string run_plan(const io::Config& config, const PlanOptions& o) {
+  const PanSpec spec = make_pan_spec(config);
+  if (o.ranks < 1 || o.ranks_per_task < 1 || o.ranks % o.ranks_per_task != 0)
+    throw InputError(fmt::format("--ranks {} --ranks-per-task {}: the ranks per task must divide the ranks", o.ranks,
+                                 o.ranks_per_task));
+  const auto tasks = pan_tasks(spec);
+  const PlanCost cost = plan_cost(config, spec, tasks.size(), o);
+  std::string out = plan_report(spec, tasks, o, cost);
+  if (!o.sbatch.empty()) out += write_sbatch_scripts(config, o, tasks.size(), cost);
+  return out;
+}
 
 Command add_plan_command(CLI::App& parent) {
   auto* app = parent.add_subcommand("plan", "predict a PAN sweep's cost (tasks, cells x steps, memory per rank, wall "

@@ -115,6 +115,194 @@ class SharedCounters {
   MPI_Win win_ = MPI_WIN_NULL;
 };
 
+// The tasks of this slice of the sweep: t with t % slice_count == slice_index.
+std::vector<std::size_t> slice_tasks(std::size_t n_tasks, const SweepOptions& o) {
+  if (o.slice_count < 1 || o.slice_index < 0 || o.slice_index >= o.slice_count)
+    throw InputError(fmt::format("--slice {}/{}: needs 0 <= index < count", o.slice_index, o.slice_count));
+  std::vector<std::size_t> slice;
+  for (std::size_t t = static_cast<std::size_t>(o.slice_index); t < n_tasks; t += static_cast<std::size_t>(o.slice_count))
+    slice.push_back(t);
+  return slice;
+}
+
+// On rank 0: prepares the folder, counts the slice's verified finished tasks into `done_before`
+// and returns the others ("t1 t2 ... "), the tasks still to run.
+std::string scan_results(const std::vector<std::string>& names, const std::vector<std::size_t>& slice,
+                         const std::string& config_toml, const SweepOptions& o, std::size_t& done_before) {
+  Stage stage("scan results");
+  prepare_results_dir(o.results_dir, config_toml);
+  std::string pending_text;
+  std::size_t present = 0;
+  for (std::size_t t : slice) {
+    const TaskRecord r = inspect_task(o.results_dir, names[t], config_toml);
+    if (r.state != TaskState::missing) ++present;
+    if (r.state == TaskState::done) {
+      ++done_before;
+      continue;
+    }
+    if (r.state == TaskState::failed) spdlog::info("sweep: retrying {} (failed before: {})", names[t], r.reason);
+    if (r.state == TaskState::invalid) spdlog::warn("sweep: redoing {}: {}", names[t], r.reason);
+    pending_text += std::to_string(t) + " ";
+  }
+  if (present > 0 && !o.resume)
+    throw InputError(fmt::format("--results {}: already holds {} of this sweep's task files; add --resume to go on "
+                                 "(finished tasks are kept) or use another folder",
+                                 o.results_dir, present));
+  if (const int n = remove_stale_temporaries(o.results_dir, names, slice); n > 0)
+    spdlog::info("sweep: removed {} temporary file(s) of an earlier run that was killed", n);
+  return pending_text;
+}
+
+// Rank 0 looks at the folder; everybody gets the list of pending tasks and `done_before`.
+std::vector<std::size_t> find_pending(MPI_Comm world, const std::vector<std::string>& names,
+                                      const std::vector<std::size_t>& slice, const std::string& config_toml,
+                                      const SweepOptions& o, std::size_t& done_before) {
+  std::string pending_text;
+  mpi::agree(world, [&] {
+    if (mpi::rank(world) != 0) return;
+    pending_text = scan_results(names, slice, config_toml, o, done_before);
+  });
+  pending_text = mpi::broadcast(world, pending_text);
+  std::vector<std::size_t> pending;
+  {
+    std::istringstream in(pending_text);
+    for (std::size_t t; in >> t;) pending.push_back(t);
+  }
+  long long skipped = static_cast<long long>(done_before);
+  mpi::check(MPI_Bcast(&skipped, 1, MPI_LONG_LONG, 0, world), "MPI_Bcast");
+  done_before = static_cast<std::size_t>(skipped);
+  return pending;
+}
+
+// What the per-task bookkeeping of one run needs to know.
+struct SweepRun {
+  const std::vector<std::string>& names;
+  const std::string& results_dir;
+  const std::string& id;  // the sweep id stamped into every task file
+  std::size_t n_pending;  // tasks handed out in this run
+  std::size_t n_slice;    // tasks of the slice, finished before included
+  std::chrono::steady_clock::time_point start;  // of the hand-out, for the rate and the ETA
+};
+
+struct NextTask {
+  bool stop = false;   // the group stops (interrupted)
+  long long next = -1;  // index into the pending list; at or past its end when none is left
+};
+
+// The whole group agrees to stop, then the leader takes the next task for it.
+NextTask take_next_task(const mpi::TaskGroups& groups, SharedCounters& counters) {
+  MPI_Comm group = groups.group();
+  int stop_local = interrupt_requested() ? 1 : 0, stop = 0;
+  mpi::check(MPI_Allreduce(&stop_local, &stop, 1, MPI_INT, MPI_MAX, group), "MPI_Allreduce");
+  long long next = -1;
+  if (groups.is_leader() && !stop) next = counters.add(SharedCounters::kNext, 1);
+  mpi::check(MPI_Bcast(&next, 1, MPI_LONG_LONG, 0, group), "MPI_Bcast");
+  return {stop != 0, next};
+}
+
+struct TaskOutcome {
+  TaskWriter writer;        // done: writes the result (on the group leader)
+  std::string failure;      // failed: why
+  bool interrupted = false;
+};
+
+// Runs one task on every rank of the group; the failures a sweep records and an interrupt come
+// back as the outcome, anything else propagates.
+TaskOutcome run_task(const TaskRunner& runner, MPI_Comm group, std::size_t task) {
+  TaskOutcome outcome;
+  try {
+    outcome.writer = runner(group, task);
+  } catch (const Interrupted& e) {
+    outcome.interrupted = true;  // collective: every rank of the group is here
+  } catch (const TaskFailure& e) {
+    outcome.failure = e.what();  // collective too
+  } catch (const InputError& e) {
+    outcome.failure = e.what();  // raised alike on every rank by contract (core/errors.hpp)
+  }
+  return outcome;
+}
+
+// On the group leader: writes the task's file, done or failed with its reason (also when the result
+// cannot be written). Returns the failure, empty when done.
+std::string record_task(const SweepRun& run, std::size_t task, const TaskOutcome& outcome) {
+  const std::string& name = run.names[task];
+  const std::string path = task_path(run.results_dir, name);
+  std::string failure = outcome.failure;
+  if (failure.empty()) {
+    try {
+      Stage stage("write task");
+      write_task_file(path, run.id, name, "done", "", &outcome.writer);
+    } catch (const std::exception& e) {
+      failure = fmt::format("writing the result: {}", e.what());
+    }
+  }
+  if (!failure.empty()) {
+    spdlog::error("sweep: task {} failed: {}", name, failure);
+    try {
+      write_task_file(path, run.id, name, "failed", failure, nullptr);
+    } catch (const std::exception& e) {
+      spdlog::error("sweep: cannot record the failure of {} either: {}", name, e.what());
+    }
+  }
+  return failure;
+}
+
+// On the group leader: records the task, counts it (here and on the shared counters) and logs the
+// progress of the whole run.
+void finish_task(SharedCounters& counters, const SweepRun& run, std::size_t task, const TaskOutcome& outcome,
+                 std::chrono::steady_clock::time_point task_start, SweepReport& report) {
+  const std::string failure = record_task(run, task, outcome);
+  if (!failure.empty()) {
+    ++report.failed;
+    counters.add(SharedCounters::kFailed, 1);
+  } else {
+    ++report.done_now;
+  }
+  const long long finished = counters.add(SharedCounters::kDone, 1) + 1;
+  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - run.start).count();
+  const double per_hour = 3600.0 * static_cast<double>(finished) / std::max(elapsed_s, 1e-9);
+  const double left = static_cast<double>(static_cast<long long>(run.n_pending) - finished);
+  spdlog::info("sweep: {} {} in {:.1f} s; {}/{} tasks finished ({} failed), {:.0f} tasks/h, ETA {}", run.names[task],
+               failure.empty() ? "done" : "FAILED",
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - task_start).count(),
+               finished + static_cast<long long>(report.done_before), run.n_slice,
+               counters.add(SharedCounters::kFailed, 0), per_hour, clock_text(3600.0 * left / std::max(per_hour, 1e-9)));
+}
+
+// Every group takes pending tasks and runs them until none is left or it is interrupted.
+void hand_out_tasks(const mpi::TaskGroups& groups, SharedCounters& counters, const TaskRunner& runner,
+                    const std::vector<std::size_t>& pending, const SweepRun& run, SweepReport& report) {
+  for (;;) {
+    const NextTask next = take_next_task(groups, counters);
+    if (next.stop) {
+      report.interrupted = true;
+      break;
+    }
+    if (next.next < 0 || next.next >= static_cast<long long>(pending.size())) break;
+    const std::size_t task = pending[static_cast<std::size_t>(next.next)];
+    const auto task_start = std::chrono::steady_clock::now();
+    const TaskOutcome outcome = run_task(runner, groups.group(), task);
+    if (outcome.interrupted) {
+      report.interrupted = true;
+      break;
+    }
+    if (groups.is_leader()) finish_task(counters, run, task, outcome, task_start, report);
+  }
+}
+
+// Totals over the groups (counted on leaders only).
+void reduce_over_groups(MPI_Comm world, bool leader, SweepReport& report) {
+  long long local[3] = {static_cast<long long>(report.done_now), static_cast<long long>(report.failed),
+                        report.interrupted ? 1 : 0};
+  if (!leader) local[0] = local[1] = 0;
+  long long sum[3] = {0, 0, 0}, any_interrupt = 0;
+  mpi::check(MPI_Allreduce(local, sum, 2, MPI_LONG_LONG, MPI_SUM, world), "MPI_Allreduce");
+  mpi::check(MPI_Allreduce(&local[2], &any_interrupt, 1, MPI_LONG_LONG, MPI_MAX, world), "MPI_Allreduce");
+  report.done_now = static_cast<std::size_t>(sum[0]);
+  report.failed = static_cast<std::size_t>(sum[1]);
+  report.interrupted = any_interrupt != 0;
+}
+
 }  // namespace
 
 std::string task_path(const std::string& results_dir, const std::string& name) {
@@ -153,131 +341,23 @@ SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, con
   install_interrupt_handlers();
   SweepReport report;
   report.total = names.size();
-  if (o.slice_count < 1 || o.slice_index < 0 || o.slice_index >= o.slice_count)
-    throw InputError(fmt::format("--slice {}/{}: needs 0 <= index < count", o.slice_index, o.slice_count));
-  std::vector<std::size_t> slice;
-  for (std::size_t t = static_cast<std::size_t>(o.slice_index); t < names.size(); t += static_cast<std::size_t>(o.slice_count))
-    slice.push_back(t);
+  const std::vector<std::size_t> slice = slice_tasks(names.size(), o);
   report.in_slice = slice.size();
   const std::string id = sweep_id(config_toml);
   std::optional<mpi::TaskGroups> groups_storage;  // first: a bad --ranks-per-task creates nothing
   mpi::agree(world, [&] { groups_storage.emplace(world, o.ranks_per_task); });
   const mpi::TaskGroups& groups = *groups_storage;
 
-  // Rank 0 looks at the folder; everybody gets the list of pending tasks.
-  std::string pending_text;
-  mpi::agree(world, [&] {
-    if (mpi::rank(world) != 0) return;
-    Stage stage("scan results");
-    prepare_results_dir(o.results_dir, config_toml);
-    std::size_t present = 0;
-    for (std::size_t t : slice) {
-      const TaskRecord r = inspect_task(o.results_dir, names[t], config_toml);
-      if (r.state != TaskState::missing) ++present;
-      if (r.state == TaskState::done) {
-        ++report.done_before;
-        continue;
-      }
-      if (r.state == TaskState::failed) spdlog::info("sweep: retrying {} (failed before: {})", names[t], r.reason);
-      if (r.state == TaskState::invalid) spdlog::warn("sweep: redoing {}: {}", names[t], r.reason);
-      pending_text += std::to_string(t) + " ";
-    }
-    if (present > 0 && !o.resume)
-      throw InputError(fmt::format("--results {}: already holds {} of this sweep's task files; add --resume to go on "
-                                   "(finished tasks are kept) or use another folder",
-                                   o.results_dir, present));
-    if (const int n = remove_stale_temporaries(o.results_dir, names, slice); n > 0)
-      spdlog::info("sweep: removed {} temporary file(s) of an earlier run that was killed", n);
-  });
-  pending_text = mpi::broadcast(world, pending_text);
-  std::vector<std::size_t> pending;
-  {
-    std::istringstream in(pending_text);
-    for (std::size_t t; in >> t;) pending.push_back(t);
-  }
-  long long skipped = static_cast<long long>(report.done_before);
-  mpi::check(MPI_Bcast(&skipped, 1, MPI_LONG_LONG, 0, world), "MPI_Bcast");
-  report.done_before = static_cast<std::size_t>(skipped);
-
+  const std::vector<std::size_t> pending = find_pending(world, names, slice, config_toml, o, report.done_before);
   spdlog::info("sweep: {} tasks in this run ({} of {} in slice {}/{}, {} already done), {} group(s) of {} rank(s), "
                "results in {}",
                pending.size(), slice.size(), names.size(), o.slice_index, o.slice_count, report.done_before,
                groups.n_groups(), o.ranks_per_task, o.results_dir);
+  // Lives until after the reduction: freeing its window is collective over the world.
   SharedCounters counters(world);
-  const auto start = std::chrono::steady_clock::now();
-  MPI_Comm group = groups.group();
-  for (;;) {
-    // The whole group agrees to stop, then the leader takes the next task for it.
-    int stop_local = interrupt_requested() ? 1 : 0, stop = 0;
-    mpi::check(MPI_Allreduce(&stop_local, &stop, 1, MPI_INT, MPI_MAX, group), "MPI_Allreduce");
-    long long next = -1;
-    if (groups.is_leader() && !stop) next = counters.add(SharedCounters::kNext, 1);
-    mpi::check(MPI_Bcast(&next, 1, MPI_LONG_LONG, 0, group), "MPI_Bcast");
-    if (stop) {
-      report.interrupted = true;
-      break;
-    }
-    if (next < 0 || next >= static_cast<long long>(pending.size())) break;
-    const std::size_t task = pending[static_cast<std::size_t>(next)];
-    const auto t0 = std::chrono::steady_clock::now();
-    std::string failure;
-    TaskWriter writer;
-    bool interrupted = false;
-    try {
-      writer = runner(group, task);
-    } catch (const Interrupted& e) {
-      interrupted = true;  // collective: every rank of the group is here
-    } catch (const TaskFailure& e) {
-      failure = e.what();  // collective too
-    } catch (const InputError& e) {
-      failure = e.what();  // raised alike on every rank by contract (core/errors.hpp)
-    }
-    if (interrupted) {
-      report.interrupted = true;
-      break;
-    }
-    if (!groups.is_leader()) continue;
-    const std::string path = task_path(o.results_dir, names[task]);
-    if (failure.empty()) {
-      try {
-        Stage stage("write task");
-        write_task_file(path, id, names[task], "done", "", &writer);
-      } catch (const std::exception& e) {
-        failure = fmt::format("writing the result: {}", e.what());
-      }
-    }
-    if (!failure.empty()) {
-      ++report.failed;
-      spdlog::error("sweep: task {} failed: {}", names[task], failure);
-      try {
-        write_task_file(path, id, names[task], "failed", failure, nullptr);
-      } catch (const std::exception& e) {
-        spdlog::error("sweep: cannot record the failure of {} either: {}", names[task], e.what());
-      }
-      counters.add(SharedCounters::kFailed, 1);
-    } else {
-      ++report.done_now;
-    }
-    const long long finished = counters.add(SharedCounters::kDone, 1) + 1;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double per_hour = 3600.0 * static_cast<double>(finished) / std::max(elapsed, 1e-9);
-    const double left = static_cast<double>(static_cast<long long>(pending.size()) - finished);
-    spdlog::info("sweep: {} {} in {:.1f} s; {}/{} tasks finished ({} failed), {:.0f} tasks/h, ETA {}", names[task],
-                 failure.empty() ? "done" : "FAILED",
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-                 finished + static_cast<long long>(report.done_before), slice.size(),
-                 counters.add(SharedCounters::kFailed, 0), per_hour, clock_text(3600.0 * left / std::max(per_hour, 1e-9)));
-  }
-  // Totals over the groups (counted on leaders only).
-  long long local[3] = {static_cast<long long>(report.done_now), static_cast<long long>(report.failed),
-                        report.interrupted ? 1 : 0};
-  if (!groups.is_leader()) local[0] = local[1] = 0;
-  long long sum[3] = {0, 0, 0}, any_interrupt = 0;
-  mpi::check(MPI_Allreduce(local, sum, 2, MPI_LONG_LONG, MPI_SUM, world), "MPI_Allreduce");
-  mpi::check(MPI_Allreduce(&local[2], &any_interrupt, 1, MPI_LONG_LONG, MPI_MAX, world), "MPI_Allreduce");
-  report.done_now = static_cast<std::size_t>(sum[0]);
-  report.failed = static_cast<std::size_t>(sum[1]);
-  report.interrupted = any_interrupt != 0;
+  const SweepRun run{names, o.results_dir, id, pending.size(), slice.size(), std::chrono::steady_clock::now()};
+  hand_out_tasks(groups, counters, runner, pending, run, report);
+  reduce_over_groups(world, groups.is_leader(), report);
   return report;
 }
 
