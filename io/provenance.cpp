@@ -34,7 +34,7 @@ void write_provenance(File& file, const std::string& command_line, const std::st
   // Every rank must write the same bytes into a parallel file's attribute: the time comes from
   // rank 0 (seconds resolution, and ranks start together), broadcast to be safe.
   long long now = static_cast<long long>(std::time(nullptr));
-  if (file.parallel()) MPI_Bcast(&now, 1, MPI_LONG_LONG, 0, file.comm());
+  file.broadcast(&now, sizeof now);
   std::time_t t = static_cast<std::time_t>(now);
   char text[32];
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
