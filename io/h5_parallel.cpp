@@ -1,6 +1,10 @@
 #include "io/h5_parallel.hpp"
 
+#include <optional>
+#include <string>
+
 #include "io/h5_detail.hpp"
+#include "io/linked_libraries.hpp"
 
 namespace clatter::io {
 namespace {
@@ -48,5 +52,14 @@ CLATTER_H5_INSTANTIATE(std::uint64_t)
 CLATTER_H5_INSTANTIATE(std::int16_t)
 CLATTER_H5_INSTANTIATE(std::uint16_t)
 #undef CLATTER_H5_INSTANTIATE
+
+// Callable before MPI_Init (MPI 3.0), so --version needs no MPI start-up.
+std::optional<std::string> mpi_library() {
+  char text[MPI_MAX_LIBRARY_VERSION_STRING];
+  int length = 0;  // Open MPI counts the terminating null in it
+  if (MPI_Get_library_version(text, &length) != MPI_SUCCESS) return "unknown MPI library";
+  const std::string s(text);  // null-terminated (MPI 3.0, 7.1.1)
+  return s.substr(0, s.find_first_of("\n\r"));
+}
 
 }  // namespace clatter::io

@@ -5,6 +5,7 @@
 
 #include "core/build_info.hpp"
 #include "core/errors.hpp"
+#include "io/linked_libraries.hpp"
 
 namespace clatter::io {
 
@@ -21,10 +22,9 @@ void write_provenance(File& file, const std::string& command_line, const std::st
   write_attribute(file, g, "clatter_version", b.version);
   write_attribute(file, g, "git_revision", b.git_revision);
   write_attribute(file, g, "compiler", b.compiler);
-  write_attribute(file, g, "mpi", b.mpi);
-  write_attribute(file, g, "petsc", b.petsc);
-  write_attribute(file, g, "slepc", b.slepc);
-  write_attribute(file, g, "hdf5", b.hdf5);
+  // The libraries the writing binary runs with: no "mpi" from a binary without MPI.
+  if (const auto mpi = mpi_library()) write_attribute(file, g, "mpi", *mpi);
+  write_attribute(file, g, "hdf5", hdf5_library());
   // How this copy was made rather than what it holds: the same content can come from 1 or 64
   // ranks, now or later. Content hashes (clatter-bank checksum) leave /provenance/run out.
   const std::string run = "/provenance/run";
