@@ -1,12 +1,7 @@
-# Versions of what Clatter was built against, for `--version` and bank provenance.
-# Library versions are fixed at configure time; the git revision is re-read at every build.
+# What Clatter was built with, for `--version` and bank provenance: compiler, build type and the
+# header versions are fixed at configure time; the git revision is re-read at every build. The
+# HDF5 and MPI libraries are asked at run time instead (io/linked_libraries.cpp).
 
-execute_process(COMMAND ${MPIEXEC_EXECUTABLE} --version OUTPUT_VARIABLE _mpiexec_version
-                ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE)
-string(REGEX MATCH "^[^\n]*" CLATTER_MPI_LIBRARY "${_mpiexec_version}")
-if(NOT CLATTER_MPI_LIBRARY)
-  set(CLATTER_MPI_LIBRARY "MPI ${MPI_CXX_VERSION}")
-endif()
 set(CLATTER_COMPILER "${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION}")
 set(CLATTER_BUILD_TYPE "${CMAKE_BUILD_TYPE}")
 configure_file(${CMAKE_CURRENT_LIST_DIR}/build_info.cpp.in ${PROJECT_BINARY_DIR}/generated/build_info.cpp @ONLY)

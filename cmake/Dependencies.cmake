@@ -1,9 +1,13 @@
-# Every third-party dependency is found here, once, and exposed as an imported target.
+# Every third-party dependency is found here, once, and exposed as an imported target. Only what
+# some target links is found: the modal bank will bring PETSc, SLEPc, CGAL and TetGen back with
+# their first user (cluster/install-deps.sh already installs them).
 # On a cluster, point CMake at module-provided installs with <Pkg>_ROOT or PKG_CONFIG_PATH
 # (see docs/cluster.md).
 
 find_package(MPI 3.1 REQUIRED COMPONENTS C CXX)
 
+# Two HDF5 builds of the same release: the parallel one (MPI-IO) for clatter-bank, the serial one
+# for clatter-synth, which must run without an MPI runtime. No binary links both (io/CMakeLists.txt).
 set(HDF5_PREFER_PARALLEL TRUE)
 find_package(HDF5 REQUIRED COMPONENTS C)
 if(NOT HDF5_IS_PARALLEL)
@@ -12,32 +16,23 @@ if(NOT HDF5_IS_PARALLEL)
     "includes ${HDF5_C_INCLUDE_DIRS}) is serial. Debian: apt-get install libhdf5-openmpi-dev. "
     "Cluster: load the parallel HDF5 module and configure with -DHDF5_ROOT=<its prefix>.")
 endif()
-add_library(clatter_hdf5 INTERFACE)
-target_include_directories(clatter_hdf5 SYSTEM INTERFACE ${HDF5_C_INCLUDE_DIRS})
-target_compile_definitions(clatter_hdf5 INTERFACE ${HDF5_C_DEFINITIONS})
-target_link_libraries(clatter_hdf5 INTERFACE ${HDF5_C_LIBRARIES} MPI::MPI_C)
+add_library(clatter_hdf5_mpi INTERFACE)
+target_include_directories(clatter_hdf5_mpi SYSTEM INTERFACE ${HDF5_C_INCLUDE_DIRS})
+target_compile_definitions(clatter_hdf5_mpi INTERFACE ${HDF5_C_DEFINITIONS})
+target_link_libraries(clatter_hdf5_mpi INTERFACE ${HDF5_C_LIBRARIES} MPI::MPI_C)
+# libhdf5 itself, for tests/cli/install_checks.sh (which checks that clatter-bank loads it).
+set(CLATTER_HDF5_MPI_LIBRARY ${HDF5_C_LIBRARY_hdf5})
+if(NOT CLATTER_HDF5_MPI_LIBRARY)
+  set(CLATTER_HDF5_MPI_LIBRARY ${HDF5_C_LIBRARIES})
+  list(FILTER CLATTER_HDF5_MPI_LIBRARY INCLUDE REGEX "hdf5[^/]*$")
+  list(POP_FRONT CLATTER_HDF5_MPI_LIBRARY CLATTER_HDF5_MPI_LIBRARY)
+endif()
 
 find_package(PkgConfig REQUIRED)
-# PETSc.pc does not carry MPI's include path: consumers also link MPI::MPI_CXX.
-pkg_check_modules(PETSc REQUIRED IMPORTED_TARGET PETSc>=3.18)
-pkg_check_modules(SLEPc REQUIRED IMPORTED_TARGET SLEPc>=3.18)
+include(SerialHDF5)
 
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(GSL 2.7 REQUIRED)
-find_package(CGAL REQUIRED)
-
-find_path(TETGEN_INCLUDE_DIR tetgen.h)
-find_library(TETGEN_LIBRARY NAMES tet tetgen)
-if(NOT TETGEN_INCLUDE_DIR OR NOT TETGEN_LIBRARY)
-  message(FATAL_ERROR "TetGen not found (tetgen.h and libtet). Debian: apt-get install libtet1.5-dev; "
-                      "elsewhere: -DTETGEN_INCLUDE_DIR=... -DTETGEN_LIBRARY=...")
-endif()
-add_library(TetGen::TetGen UNKNOWN IMPORTED)
-set_target_properties(TetGen::TetGen PROPERTIES
-  IMPORTED_LOCATION ${TETGEN_LIBRARY}
-  INTERFACE_INCLUDE_DIRECTORIES ${TETGEN_INCLUDE_DIR}
-  INTERFACE_COMPILE_DEFINITIONS TETLIBRARY)
-
 find_package(toml11 3.7 REQUIRED)
 find_package(CLI11 2.1 REQUIRED)
 find_package(fmt 9 REQUIRED)

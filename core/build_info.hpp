@@ -1,27 +1,19 @@
 #pragma once
-#include <string>
 
 namespace clatter {
 
-// What this binary was built from and against; printed by --version and stored as provenance.
+// What this binary was built from, fixed at configure and build time. The libraries it runs with
+// (HDF5, MPI) are asked at run time by io/linked_libraries.hpp, which prints --version.
 struct BuildInfo {
   const char* version;
   const char* git_revision;
   const char* compiler;
   const char* build_type;
-  const char* mpi;
-  const char* petsc;
-  const char* slepc;
-  const char* hdf5;
-  const char* eigen;
-  const char* gsl;
-  const char* cgal;
+  const char* eigen;  // header-only, compiled into the kernels
+  const char* gsl;    // the headers the kernels were compiled against
 };
 
 const BuildInfo& build_info();
 const char* git_revision();
-
-// Multi-line "name version\n  key: value" text for --version.
-std::string version_text(const char* program);
 
 }  // namespace clatter

@@ -9,16 +9,16 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
-#include <numeric>
 #include <stdexcept>
 
 #include "core/cleanup.hpp"
 #include "core/errors.hpp"
+#include "io/h5_detail.hpp"
 
 namespace clatter::io {
-namespace {
 
-// HDF5 prints its error stack to stderr by default; Clatter reports errors itself, in one line.
+namespace detail {
+
 void silence_hdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 std::string hdf5_error_text() {
@@ -34,60 +34,8 @@ std::string hdf5_error_text() {
   return text.empty() ? "unknown HDF5 error" : text;
 }
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
+void fail(const std::string& path, const std::string& what) {
   throw std::runtime_error(path + ": " + what + " (HDF5: " + hdf5_error_text() + ")");
-}
-
-template <class T>
-hid_t native_type() {
-  if constexpr (std::is_same_v<T, float>) return H5T_NATIVE_FLOAT;
-  if constexpr (std::is_same_v<T, double>) return H5T_NATIVE_DOUBLE;
-  if constexpr (std::is_same_v<T, std::int32_t>) return H5T_NATIVE_INT32;
-  if constexpr (std::is_same_v<T, std::int64_t>) return H5T_NATIVE_INT64;
-  if constexpr (std::is_same_v<T, std::uint8_t>) return H5T_NATIVE_UINT8;
-  if constexpr (std::is_same_v<T, std::uint32_t>) return H5T_NATIVE_UINT32;
-  if constexpr (std::is_same_v<T, std::uint64_t>) return H5T_NATIVE_UINT64;
-  if constexpr (std::is_same_v<T, std::int16_t>) return H5T_NATIVE_INT16;
-  if constexpr (std::is_same_v<T, std::uint16_t>) return H5T_NATIVE_UINT16;
-}
-
-template <class T>
-std::string type_name() {
-  if constexpr (std::is_floating_point_v<T>) return "float" + std::to_string(8 * sizeof(T));
-  if constexpr (std::is_signed_v<T>) return "int" + std::to_string(8 * sizeof(T));
-  return "uint" + std::to_string(8 * sizeof(T));
-}
-
-std::string type_name(hid_t type) {
-  const std::size_t bits = 8 * H5Tget_size(type);
-  switch (H5Tget_class(type)) {
-    case H5T_FLOAT: return "float" + std::to_string(bits);
-    case H5T_INTEGER: return (H5Tget_sign(type) == H5T_SGN_NONE ? "uint" : "int") + std::to_string(bits);
-    case H5T_STRING: return "string";
-    case H5T_COMPOUND: return "compound";
-    default: return "type class " + std::to_string(static_cast<int>(H5Tget_class(type)));
-  }
-}
-
-template <class T>
-bool type_matches(hid_t type) {
-  const H5T_class_t want = std::is_floating_point_v<T> ? H5T_FLOAT : H5T_INTEGER;
-  if (H5Tget_class(type) != want || H5Tget_size(type) != sizeof(T)) return false;
-  if constexpr (std::is_integral_v<T>) return (H5Tget_sign(type) != H5T_SGN_NONE) == std::is_signed_v<T>;
-  return true;
-}
-
-std::string shape_text(const std::vector<long long>& dims) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < dims.size(); ++i)
-    s += (i ? ", " : "") + (dims[i] < 0 ? std::string("*") : std::to_string(dims[i]));
-  return s + "]";
-}
-
-std::string shape_text(const Dims& dims) { return shape_text(std::vector<long long>(dims.begin(), dims.end())); }
-
-hsize_t element_count(const Dims& dims) {
-  return std::accumulate(dims.begin(), dims.end(), hsize_t{1}, std::multiplies<>());
 }
 
 Handle link_create_plist() {
@@ -96,11 +44,11 @@ Handle link_create_plist() {
   return lcpl;
 }
 
-int comm_rank(MPI_Comm comm) {
-  int r = 0;
-  if (comm != MPI_COMM_NULL) MPI_Comm_rank(comm, &r);
-  return r;
-}
+}  // namespace detail
+
+using namespace detail;
+
+namespace {
 
 // fsync a path opened read-only; directories too, so a rename survives a crash.
 bool fsync_path(const std::string& path) {
@@ -127,24 +75,25 @@ void Handle::reset() {
   id_ = H5I_INVALID_HID;
 }
 
-File File::create(const std::string& path, MPI_Comm comm) {
+File File::create(const std::string& path) { return create(path, nullptr); }
+
+File File::create(const std::string& path, std::unique_ptr<const Collective> collective) {
   silence_hdf5();
   namespace fs = std::filesystem;
   File f;
   f.path_ = path;
-  f.comm_ = comm;
+  f.collective_ = std::move(collective);
   const fs::path final_path(path);
   if (final_path.has_parent_path()) fs::create_directories(final_path.parent_path());
   // One temporary name for all ranks: rank 0's pid and clock, so two runs never collide.
   long long token[2] = {static_cast<long long>(::getpid()),
                         static_cast<long long>(std::chrono::steady_clock::now().time_since_epoch().count())};
-  if (comm != MPI_COMM_NULL) MPI_Bcast(token, 2, MPI_LONG_LONG, 0, comm);
+  f.broadcast(token, sizeof token);
   // Hidden, in the same folder (so the final rename is atomic), e.g. ".field.h5.tmp-4242-917".
   std::string temp_name = fmt::format(".{}.tmp-{}-{}", final_path.filename().string(), token[0], token[1] % 1000000);
   f.temp_path_ = (final_path.parent_path() / temp_name).string();
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  if (comm != MPI_COMM_NULL && H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL) < 0)
-    fail(path, "cannot set up MPI-IO");
+  if (f.parallel() && !f.collective_->set_file_access(fapl.get())) fail(path, "cannot set up MPI-IO");
   register_temporary(f.temp_path_);
   hid_t id = H5Fcreate(f.temp_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
   if (id < 0) {
@@ -170,9 +119,13 @@ File File::open(const std::string& path) {
 }
 
 File::File(File&& o) noexcept
-    : path_(std::move(o.path_)), temp_path_(std::move(o.temp_path_)), comm_(o.comm_), file_(std::move(o.file_)) {
+    : path_(std::move(o.path_)),
+      temp_path_(std::move(o.temp_path_)),
+      collective_(std::move(o.collective_)),
+      file_(std::move(o.file_)) {
   o.temp_path_.clear();
 }
+
 
 File::~File() { discard(); }
 
@@ -193,7 +146,7 @@ void File::commit() {
   if (temp_path_.empty()) throw std::logic_error(path_ + ": commit() on a file not open for writing");
   if (H5Fclose(file_.release()) < 0) fail(path_, "cannot close");
   int error = 0;
-  if (comm_rank(comm_) == 0) {
+  if (rank() == 0) {
     if (!fsync_path(temp_path_))
       error = errno ? errno : EIO;
     else if (std::rename(temp_path_.c_str(), path_.c_str()) != 0)
@@ -203,19 +156,20 @@ void File::commit() {
       fsync_path(dir.empty() ? "." : dir.string());
     }
   }
-  if (parallel()) MPI_Bcast(&error, 1, MPI_INT, 0, comm_);
+  broadcast(&error, sizeof error);
   unregister_temporary(temp_path_);
   if (error != 0) {
-    if (comm_rank(comm_) == 0) std::remove(temp_path_.c_str());
+    if (rank() == 0) std::remove(temp_path_.c_str());
     temp_path_.clear();
     throw std::runtime_error(path_ + ": cannot move into place: " + std::strerror(error));
   }
   temp_path_.clear();
 }
 
+namespace detail {
 template <Element T>
-void write_dataset_block(File& file, const std::string& name, const Dims& global_dims, const Dims& offset,
-                         const Dims& count, std::span<const T> data, std::string_view units, bool compress) {
+void write_block(File& file, const std::string& name, const Dims& global_dims, const Dims& offset,
+                 const Dims& count, std::span<const T> data, std::string_view units, bool compress) {
   if (offset.size() != global_dims.size() || count.size() != global_dims.size() || data.size() != element_count(count))
     throw std::invalid_argument(file.path() + ": dataset '" + name + "': block does not match its data");
   Handle file_space(H5Screate_simple(static_cast<int>(global_dims.size()), global_dims.data(), nullptr), H5Sclose);
@@ -245,161 +199,30 @@ void write_dataset_block(File& file, const std::string& name, const Dims& global
     fail(file.path(), "dataset '" + name + "': block outside the dataset");
   }
   Handle dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
-  if (file.parallel()) H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE);
+  if (file.parallel() && !file.collective()->set_transfer(dxpl.get()))
+    fail(file.path(), "dataset '" + name + "': cannot set up a collective write");
   if (H5Dwrite(dset.get(), native_type<T>(), mem_space.get(), file_space.get(), dxpl.get(), data.data()) < 0)
     fail(file.path(), "cannot write dataset '" + name + "'");
   dset.reset();
   write_attribute(file, name, "units", units);
 }
+}  // namespace detail
 
 template <Element T>
 void write_dataset(File& file, const std::string& name, std::span<const T> data, const Dims& dims,
                    std::string_view units, bool compress) {
   // On a parallel file rank 0's copy is the one written; the call stays collective.
-  const bool writer = comm_rank(file.comm()) == 0;
+  const bool writer = file.rank() == 0;
   Dims count = writer ? dims : Dims(dims.size(), 0);
-  write_dataset_block<T>(file, name, dims, Dims(dims.size(), 0), count,
-                         writer ? data : std::span<const T>(), units, compress);
-}
-
-namespace {
-Handle open_object(const File& file, const std::string& object) {
-  Handle obj(H5Oopen(file.id(), object.c_str(), H5P_DEFAULT), H5Oclose);
-  if (obj.get() < 0) {
-    H5Eclear2(H5E_DEFAULT);
-    throw InputError(file.path() + ": object '" + object + "' not found");
-  }
-  return obj;
-}
-
-Handle create_attribute(File& file, const std::string& object, const std::string& name, hid_t type) {
-  auto obj = open_object(file, object);
-  if (H5Aexists(obj.get(), name.c_str()) > 0) H5Adelete(obj.get(), name.c_str());
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  Handle attr(H5Acreate2(obj.get(), name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  if (attr.get() < 0) fail(file.path(), "cannot create attribute '" + name + "' on '" + object + "'");
-  return attr;
-}
-
-Handle open_attribute(const File& file, const std::string& object, const std::string& name) {
-  auto obj = open_object(file, object);
-  if (H5Aexists(obj.get(), name.c_str()) <= 0)
-    throw InputError(file.path() + ": '" + object + "' has no attribute '" + name + "'");
-  return Handle(H5Aopen(obj.get(), name.c_str(), H5P_DEFAULT), H5Aclose);
-}
-}  // namespace
-
-template <Element T>
-void write_attribute(File& file, const std::string& object, const std::string& name, T value) {
-  auto attr = create_attribute(file, object, name, native_type<T>());
-  if (H5Awrite(attr.get(), native_type<T>(), &value) < 0) fail(file.path(), "cannot write attribute '" + name + "'");
-}
-
-void write_attribute(File& file, const std::string& object, const std::string& name, std::string_view value) {
-  // Variable-length UTF-8: h5py reads it as a Python str.
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type.get(), H5T_VARIABLE);
-  H5Tset_cset(type.get(), H5T_CSET_UTF8);
-  auto attr = create_attribute(file, object, name, type.get());
-  std::string text(value);
-  const char* ptr = text.c_str();
-  if (H5Awrite(attr.get(), type.get(), &ptr) < 0) fail(file.path(), "cannot write attribute '" + name + "'");
-}
-
-std::string read_string_attribute(const File& file, const std::string& object, const std::string& name) {
-  auto attr = open_attribute(file, object, name);
-  Handle type(H5Aget_type(attr.get()), H5Tclose);
-  if (H5Tget_class(type.get()) != H5T_STRING)
-    throw InputError(file.path() + ": attribute '" + name + "' of '" + object + "': expected a string, found " +
-                     type_name(type.get()));
-  if (H5Tis_variable_str(type.get()) > 0) {
-    Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
-    H5Tset_size(mem.get(), H5T_VARIABLE);
-    H5Tset_cset(mem.get(), H5Tget_cset(type.get()));
-    char* ptr = nullptr;
-    if (H5Aread(attr.get(), mem.get(), &ptr) < 0) fail(file.path(), "cannot read attribute '" + name + "'");
-    std::string s = ptr ? ptr : "";
-    H5free_memory(ptr);
-    return s;
-  }
-  std::string s(H5Tget_size(type.get()), '\0');
-  if (H5Aread(attr.get(), type.get(), s.data()) < 0) fail(file.path(), "cannot read attribute '" + name + "'");
-  return s.substr(0, s.find('\0'));
-}
-
-template <Element T>
-T read_attribute(const File& file, const std::string& object, const std::string& name) {
-  auto attr = open_attribute(file, object, name);
-  Handle type(H5Aget_type(attr.get()), H5Tclose);
-  Handle space(H5Aget_space(attr.get()), H5Sclose);
-  if (!type_matches<T>(type.get()) || H5Sget_simple_extent_npoints(space.get()) != 1)
-    throw InputError(file.path() + ": attribute '" + name + "' of '" + object + "': expected a scalar " +
-                     type_name<T>() + ", found " + type_name(type.get()));
-  T value{};
-  if (H5Aread(attr.get(), native_type<T>(), &value) < 0) fail(file.path(), "cannot read attribute '" + name + "'");
-  return value;
-}
-
-bool exists(const File& file, const std::string& name) {
-  // H5Lexists needs every parent link to exist, so walk the path one component at a time.
-  std::size_t pos = 0;
-  while (pos != std::string::npos) {
-    pos = name.find('/', pos + 1);
-    std::string prefix = name.substr(0, pos);
-    if (prefix.empty() || prefix == "/") continue;
-    if (H5Lexists(file.id(), prefix.c_str(), H5P_DEFAULT) <= 0) {
-      H5Eclear2(H5E_DEFAULT);
-      return false;
-    }
-  }
-  return true;
-}
-
-void create_group(File& file, const std::string& name) {
-  auto lcpl = link_create_plist();
-  Handle group(H5Gcreate2(file.id(), name.c_str(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  if (group.get() < 0) fail(file.path(), "cannot create group '" + name + "'");
-}
-
-template <Element T>
-std::vector<T> read_dataset(const File& file, const std::string& name, const std::vector<long long>& expected_dims,
-                            std::string_view expected_units, Dims* found_dims) {
-  if (!exists(file, name)) throw InputError(file.path() + ": dataset '" + name + "' not found");
-  Handle dset(H5Dopen2(file.id(), name.c_str(), H5P_DEFAULT), H5Dclose);
-  if (dset.get() < 0) fail(file.path(), "cannot open dataset '" + name + "'");
-  Handle type(H5Dget_type(dset.get()), H5Tclose);
-  Handle space(H5Dget_space(dset.get()), H5Sclose);
-  const int rank = H5Sget_simple_extent_ndims(space.get());
-  Dims dims(static_cast<std::size_t>(std::max(rank, 0)));
-  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-  std::string units = "(none)";
-  if (H5Aexists(dset.get(), "units") > 0) units = read_string_attribute(file, name, "units");
-
-  bool ok = type_matches<T>(type.get()) && dims.size() == expected_dims.size() && units == expected_units;
-  for (std::size_t i = 0; ok && i < dims.size(); ++i)
-    ok = expected_dims[i] < 0 || static_cast<hsize_t>(expected_dims[i]) == dims[i];
-  if (!ok)
-    throw InputError(file.path() + ": dataset '" + name + "': expected " + type_name<T>() + " " +
-                     shape_text(expected_dims) + " in '" + std::string(expected_units) + "', found " +
-                     type_name(type.get()) + " " + shape_text(dims) + " in '" + units + "'");
-  std::vector<T> data(element_count(dims));
-  if (H5Dread(dset.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0) {
-    const std::string why = hdf5_error_text();
-    throw InputError(file.path() + ": dataset '" + name + "' cannot be read: corrupt or truncated file (HDF5: " + why + ")");
-  }
-  if (found_dims) *found_dims = dims;
-  return data;
+  write_block<T>(file, name, dims, Dims(dims.size(), 0), count,
+                 writer ? data : std::span<const T>(), units, compress);
 }
 
 #define CLATTER_H5_INSTANTIATE(T)                                                                                 \
   template void write_dataset<T>(File&, const std::string&, std::span<const T>, const Dims&, std::string_view,  \
                                   bool);                                                                         \
-  template void write_dataset_block<T>(File&, const std::string&, const Dims&, const Dims&, const Dims&,         \
-                                       std::span<const T>, std::string_view, bool);                              \
-  template void write_attribute<T>(File&, const std::string&, const std::string&, T);                            \
-  template std::vector<T> read_dataset<T>(const File&, const std::string&, const std::vector<long long>&,        \
-                                          std::string_view, Dims*);                                              \
-  template T read_attribute<T>(const File&, const std::string&, const std::string&);
+  template void detail::write_block<T>(File&, const std::string&, const Dims&, const Dims&, const Dims&,         \
+                                       std::span<const T>, std::string_view, bool);
 CLATTER_H5_INSTANTIATE(float)
 CLATTER_H5_INSTANTIATE(double)
 CLATTER_H5_INSTANTIATE(std::int32_t)

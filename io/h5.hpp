@@ -2,10 +2,13 @@
 // RAII HDF5 files, datasets and attributes with checked reads. Every file Clatter creates is
 // written under a temporary name and appears under its final name only on commit(); a run that
 // fails before then leaves no output file at all.
+// Serial API: this header and io/h5.cpp compile against a serial or a parallel HDF5 alike and know
+// nothing of MPI. Files shared by MPI ranks are created by io/h5_parallel.hpp (parallel build only).
 #include <hdf5.h>
-#include <mpi.h>
 
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -35,12 +38,26 @@ class Handle {
   Closer close_ = nullptr;
 };
 
+// How the ranks sharing one file agree. io/h5_parallel.cpp implements it over an MPI communicator;
+// a serial file has none.
+class Collective {
+ public:
+  virtual ~Collective() = default;
+  virtual int rank() const = 0;
+  // Every rank's `bytes` bytes at `data` become rank 0's.
+  virtual void broadcast(void* data, std::size_t bytes) const = 0;
+  // MPI-IO on a file access property list; collective transfers on a dataset transfer one.
+  virtual bool set_file_access(hid_t fapl) const = 0;
+  virtual bool set_transfer(hid_t dxpl) const = 0;
+};
+
 class File {
  public:
   // Creates `path` (and its parent folders) for writing, under a temporary name in the same folder.
-  // With a communicator other than MPI_COMM_NULL the file is opened through MPI-IO and this call,
-  // every write of a dataset or attribute, commit() and destruction are collective over it.
-  static File create(const std::string& path, MPI_Comm comm = MPI_COMM_NULL);
+  static File create(const std::string& path);
+  // The same, shared by the ranks of `collective` (io::create_parallel makes one over MPI-IO): this
+  // call, every write of a dataset or attribute, commit() and destruction are collective.
+  static File create(const std::string& path, std::unique_ptr<const Collective> collective);
   // Opens an existing file read-only (serial). Errors name the file.
   static File open(const std::string& path);
 
@@ -56,15 +73,21 @@ class File {
 
   const std::string& path() const { return path_; }
   hid_t id() const { return file_.get(); }
-  bool parallel() const { return comm_ != MPI_COMM_NULL; }
-  MPI_Comm comm() const { return comm_; }
+  bool parallel() const { return collective_ != nullptr; }
+  const Collective* collective() const { return collective_.get(); }
+  // This process's rank among the file's (0 for a serial file).
+  int rank() const { return collective_ ? collective_->rank() : 0; }
+  // Rank 0's bytes to every rank of a parallel file; nothing to do for a serial one.
+  void broadcast(void* data, std::size_t bytes) const {
+    if (collective_) collective_->broadcast(data, bytes);
+  }
 
  private:
   File() = default;
   void discard() noexcept;
   std::string path_;       // the final name, used in every message
   std::string temp_path_;  // empty for files opened for reading
-  MPI_Comm comm_ = MPI_COMM_NULL;
+  std::unique_ptr<const Collective> collective_;  // null for a serial file
   Handle file_;
 };
 
@@ -83,12 +106,6 @@ using Dims = std::vector<hsize_t>;
 template <Element T>
 void write_dataset(File& file, const std::string& name, std::span<const T> data, const Dims& dims,
                    std::string_view units, bool compress = false);
-
-// Collective on a parallel file: every rank writes its block [offset, offset + count) of a dataset
-// of `global_dims` in one collective MPI-IO call. A rank may own an empty block.
-template <Element T>
-void write_dataset_block(File& file, const std::string& name, const Dims& global_dims, const Dims& offset,
-                         const Dims& count, std::span<const T> data, std::string_view units, bool compress = false);
 
 // Scalar attributes on `object` ("/" for the file). On a parallel file every rank must pass the same value.
 template <Element T>

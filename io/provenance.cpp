@@ -5,6 +5,7 @@
 
 #include "core/build_info.hpp"
 #include "core/errors.hpp"
+#include "io/linked_libraries.hpp"
 
 namespace clatter::io {
 
@@ -21,10 +22,9 @@ void write_provenance(File& file, const std::string& command_line, const std::st
   write_attribute(file, g, "clatter_version", b.version);
   write_attribute(file, g, "git_revision", b.git_revision);
   write_attribute(file, g, "compiler", b.compiler);
-  write_attribute(file, g, "mpi", b.mpi);
-  write_attribute(file, g, "petsc", b.petsc);
-  write_attribute(file, g, "slepc", b.slepc);
-  write_attribute(file, g, "hdf5", b.hdf5);
+  // The libraries the writing binary runs with: no "mpi" from a binary without MPI.
+  if (const auto mpi = mpi_library()) write_attribute(file, g, "mpi", *mpi);
+  write_attribute(file, g, "hdf5", hdf5_library());
   // How this copy was made rather than what it holds: the same content can come from 1 or 64
   // ranks, now or later. Content hashes (clatter-bank checksum) leave /provenance/run out.
   const std::string run = "/provenance/run";
@@ -34,7 +34,7 @@ void write_provenance(File& file, const std::string& command_line, const std::st
   // Every rank must write the same bytes into a parallel file's attribute: the time comes from
   // rank 0 (seconds resolution, and ranks start together), broadcast to be safe.
   long long now = static_cast<long long>(std::time(nullptr));
-  if (file.parallel()) MPI_Bcast(&now, 1, MPI_LONG_LONG, 0, file.comm());
+  file.broadcast(&now, sizeof now);
   std::time_t t = static_cast<std::time_t>(now);
   char text[32];
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/build_info.hpp"
+#include "io/linked_libraries.hpp"
 #include "core/errors.hpp"
 #include "core/stage_log.hpp"
 #include "jobs/command.hpp"
@@ -25,7 +25,7 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
                "Run under mpirun/srun for more than one rank. Exit codes: 0 done, 1 run-time failure, 2 bad input,\n"
                "3 interrupted (SIGTERM/SIGINT; run again with --resume), 4 some sweep tasks failed.",
                "clatter-bank"};
-  app.set_version_flag("--version", version_text("clatter-bank"));
+  app.set_version_flag("--version", io::version_text("clatter-bank"));
   app.require_subcommand(1);
   app.fallthrough();  // global options may follow the subcommand
   jobs::GlobalOptions global;

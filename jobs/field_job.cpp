@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/stage_log.hpp"
-#include "io/h5.hpp"
+#include "io/h5_parallel.hpp"
 #include "io/provenance.hpp"
 #include "jobs/command.hpp"
 #include "jobs/run_options.hpp"
@@ -81,7 +81,7 @@ void run_field(MPI_Comm comm, const io::Config& config, const std::string& out_p
 
   {
     Stage stage("write");
-    auto file = io::File::create(out_path, comm);
+    auto file = io::create_parallel(out_path, comm);
     io::write_header(file, kFieldFormat, kFieldFormatVersion);
     const io::Dims global{hsize_t(n), hsize_t(n), hsize_t(n)};
     io::write_dataset_block<float>(file, "/field/p", global, {hsize_t(start[0]), hsize_t(start[1]), hsize_t(start[2])},

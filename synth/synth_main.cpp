@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "core/build_info.hpp"
+#include "io/linked_libraries.hpp"
 #include "core/cleanup.hpp"
 #include "core/errors.hpp"
 #include "io/wav.hpp"
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
   CLI::App app{"clatter-synth: renders debris sound from Clatter soundbanks and a scene of rigid-body impulses "
                "(serial; no mpirun needed).\nExit codes: 0 done, 1 run-time failure, 2 bad input.",
                "clatter-synth"};
-  app.set_version_flag("--version", version_text("clatter-synth"));
+  app.set_version_flag("--version", io::version_text("clatter-synth"));
   Options o;
   app.add_option("-i,--scene", o.scene, "scene (JSON, docs/scene-format.md); with --impulses: the side file of "
                                         "objects, materials and listeners")->required();

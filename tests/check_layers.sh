@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
-# The dependency rules of docs/architecture.md, checked on #include lines:
+# The dependency rules of docs/architecture.md, checked on #include lines and, given the
+# link_libraries.txt CMake writes into the build tree (cmake/LinkReport.cmake), on what each
+# target links (directly or through the libraries it links):
 #   kernels/ uses no MPI, HDF5, config or logging code; mpi/ knows no physics, HDF5 or config;
-#   core/ depends on nothing of Clatter's; synth/ is serial (no MPI); model/ is plain data (std only).
+#   core/ depends on nothing of Clatter's; io/ knows no physics and no MPI layer, and its serial
+#   build no MPI at all; synth/ is serial (no MPI); model/ is plain data (std only); no binary links both builds of io.
+# Usage: check_layers.sh [BUILD/link_libraries.txt]
 set -u
+links_file=${1:-}
 cd "$(dirname "$0")/.."
 status=0
 forbid() {  # forbid DIR REGEX WHY
@@ -12,11 +17,73 @@ forbid() {  # forbid DIR REGEX WHY
 }
 forbid kernels 'mpi\.h|hdf5\.h|H5|toml|io/|mpi/|jobs/|spdlog|CLI/' "must not use MPI, HDF5, config or logging code"
 forbid mpi 'hdf5\.h|H5|toml|io/|kernels/|jobs/' "must not know physics, HDF5 or config"
-forbid core 'mpi\.h|hdf5\.h|toml|io/|mpi/|kernels/|jobs/|spdlog' "must depend on nothing of Clatter's"
+forbid core 'mpi\.h|hdf5\.h|toml|io/|mpi/|kernels/|jobs/|model/|synth/|spdlog' "must depend on nothing of Clatter's"
 forbid io 'kernels/|jobs/|mpi/' "must not depend on physics or the MPI layer"
-forbid synth 'mpi\.h|mpi/|jobs/' "must stay serial"
 # model/: the standard library only. Angle includes of other libraries have a '/' or '.' (<fmt/...>,
 # <mpi.h>, <Eigen/Dense>); quoted includes are all Clatter's.
 forbid model '"|[A-Za-z0-9_]+[/.]' "must be plain data: the standard library only"
+forbid synth 'mpi\.h|mpi/|jobs/|io/h5_parallel' "must stay serial"
+forbid jobs 'synth/' "must not depend on the synthesizer (the bank's data model is in model/)"
+# Only io/h5_parallel.* (built into clatter_io_mpi alone) may see MPI inside io/.
+hits=$(grep -nE '^\s*#\s*include\s*<mpi\.h>' -r io --include='*.hpp' --include='*.cpp' | grep -v '^io/h5_parallel\.' || true)
+if [[ -n $hits ]]; then echo "FAIL: io/ includes mpi.h outside io/h5_parallel.*:"; echo "$hits"; status=1; fi
+
+if [[ -n $links_file ]]; then
+  if [[ ! -r $links_file ]]; then
+    echo "FAIL: cannot read $links_file (configure the build first)"
+    exit 1
+  fi
+  declare -A direct=()
+  while IFS= read -r line; do
+    [[ $line == *=* ]] && direct[${line%%=*}]=${line#*=}
+  done <"$links_file"
+  # closure TARGET: every name TARGET links, following the targets named in the file.
+  closure() {
+    local -A seen=()
+    local todo=("$1") t d
+    while [[ ${#todo[@]} -gt 0 ]]; do
+      t=${todo[0]}
+      todo=("${todo[@]:1}")
+      IFS=';' read -ra deps <<<"${direct[$t]:-}"
+      for d in "${deps[@]}"; do
+        d=${d#\$<LINK_ONLY:}
+        d=${d%>}
+        [[ -z $d || -n ${seen[$d]:-} ]] && continue
+        seen[$d]=1
+        todo+=("$d")
+      done
+    done
+    printf '%s\n' "${!seen[@]}"
+  }
+  # forbid_link TARGET REGEX WHY: no name TARGET links may match REGEX (whole-name, extended).
+  forbid_link() {
+    if [[ -z ${direct[$1]+set} ]]; then echo "FAIL: $1 not in $links_file"; status=1; return; fi
+    local hits
+    hits=$(closure "$1" | grep -E "^($2)$" | sort | tr '\n' ' ' || true)
+    if [[ -n $hits ]]; then echo "FAIL: $1 $3: links $hits"; status=1; fi
+  }
+  mpi='MPI::MPI_C|MPI::MPI_CXX|.*/libmpi[^/]*|clatter_io_mpi|clatter_hdf5_mpi|clatter_mpi|clatter_jobs'
+  hdf5='clatter_hdf5_serial|clatter_hdf5_mpi|.*/libhdf5[^/]*|clatter_io|clatter_io_mpi'
+  ours='clatter_[a-z_]+|clatter-[a-z-]+'
+  forbid_link clatter_core "$ours|$mpi|$hdf5|toml11::toml11|spdlog::spdlog|CLI11::CLI11" "must depend on nothing of Clatter's"
+  forbid_link clatter_kernels "$mpi|$hdf5|toml11::toml11|spdlog::spdlog|CLI11::CLI11" \
+    "must not use MPI, HDF5, config or logging code"
+  forbid_link clatter_mpi "$hdf5|toml11::toml11|clatter_kernels|clatter_jobs" "must not know physics, HDF5 or config"
+  for io in clatter_io clatter_io_mpi; do
+    forbid_link $io "clatter_kernels|clatter_jobs|clatter_mpi|clatter_synth" "must not depend on physics or the MPI layer"
+  done
+  forbid_link clatter_io "$mpi" "(the serial io) must not link MPI"
+  forbid_link clatter_synth "$mpi" "must stay serial"
+  forbid_link clatter-synth "$mpi" "must stay serial"
+  forbid_link clatter_jobs "clatter_synth" "must not depend on the synthesizer"
+  # Two builds of the same sources (io/CMakeLists.txt, synth/CMakeLists.txt) in one binary
+  # would be one definition each of two different things.
+  for t in "${!direct[@]}"; do
+    all=$(closure "$t")
+    if grep -qx clatter_io <<<"$all" && grep -qx clatter_io_mpi <<<"$all"; then
+      echo "FAIL: $t links both clatter_io and clatter_io_mpi"; status=1
+    fi
+  done
+fi
 [[ $status -eq 0 ]] && echo "PASS: layer rules hold"
 exit $status

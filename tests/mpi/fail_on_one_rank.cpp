@@ -3,13 +3,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "io/h5.hpp"
+#include "io/h5_parallel.hpp"
 #include "mpi/session.hpp"
 
 int main(int argc, char** argv) {
   return clatter::mpi::run(argc, argv, "fail-on-one-rank", [&](clatter::mpi::Session& session) {
     const std::string dir = argc > 1 ? argv[1] : ".";
-    auto file = clatter::io::File::create(dir + "/partial.h5", session.world());
+    auto file = clatter::io::create_parallel(dir + "/partial.h5", session.world());
     std::vector<double> x(1000, 1.0);
     clatter::io::write_dataset<double>(file, "/x", x, {1000}, "m");
     if (session.rank() == 1) throw std::runtime_error("injected failure on rank 1");

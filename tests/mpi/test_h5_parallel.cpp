@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "io/h5.hpp"
+#include "io/h5_parallel.hpp"
 #include "io/provenance.hpp"
 #include "mpi/cart.hpp"
 
@@ -35,7 +35,7 @@ TEST(H5Parallel, CollectiveBlockWriteLandsEveryCellInPlace) {
     for (int j = s[1]; j < s[1] + c[1]; ++j)
       for (int k = s[2]; k < s[2] + c[2]; ++k) block.push_back(pattern(i, j, k));
   {
-    auto f = io::File::create(path, MPI_COMM_WORLD);
+    auto f = io::create_parallel(path, MPI_COMM_WORLD);
     io::write_header(f, "clatter-test", 1);
     io::write_dataset_block<float>(f, "/g/p", {13, 7, 5}, {hsize_t(s[0]), hsize_t(s[1]), hsize_t(s[2])},
                                    {hsize_t(c[0]), hsize_t(c[1]), hsize_t(c[2])}, block, "Pa");
@@ -62,7 +62,7 @@ TEST(H5Parallel, CollectiveBlockWriteLandsEveryCellInPlace) {
 TEST(H5Parallel, AbandonedParallelOutputLeavesNothing) {
   const auto dir = scratch("abandoned");
   {
-    auto f = io::File::create((dir / "never.h5").string(), MPI_COMM_WORLD);
+    auto f = io::create_parallel((dir / "never.h5").string(), MPI_COMM_WORLD);
     std::vector<double> x = {1.0};
     io::write_dataset<double>(f, "/x", x, {1}, "m");
   }

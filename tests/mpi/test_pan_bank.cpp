@@ -14,7 +14,6 @@
 #include "kernels/pan/field.hpp"
 #include "kernels/pan/render.hpp"
 #include "mpi/comm.hpp"
-#include "synth/render_scene.hpp"
 #include "tests/reference/sphere_exact.hpp"
 
 using namespace clatter;
@@ -186,69 +185,4 @@ TEST(PanRender, HalfSineImpactOnASphereMatchesTheExactTranslatingSphere) {
                 x[2], err);
     EXPECT_LT(err, 0.05);
   }
-}
-
-TEST(Synth, SingleImpulseOnASphereMatchesTheExactTranslatingSphere) {
-  // The whole synthesizer path: a scene with one solid sphere (radius 0.1 m, rock-like) struck
-  // through its centre, Hertz duration, half-sine force, proxy fit from the inertia (eq. 11),
-  // nearest bank proxy (the sphere B = C = 0.5), beta = 0.2, the listener rotated into the body
-  // frame; against the exact translating sphere with acceleration (F_max / m) S(t; t0, tau).
-  io::Config config(jobs::pan_schema());
-  config.set("proxies.list_m=[[0.5, 0.5], [0.35, 0.2]]");
-  config.set("grid.dx_m=0.03");
-  config.set("solve.fields=[1, 2, 3]");
-  const auto spec = jobs::make_pan_spec(config);
-  model::PanBank bank;
-  bank.header = jobs::pan_header(spec);
-  for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) bank.proxies.push_back(jobs::build_proxy(MPI_COMM_WORLD, spec, p, {}, 0.0).proxy);
-  if (!root()) return;
-  const std::string bank_path = (std::filesystem::current_path() / "synth_sphere_bank.h5").string();
-  io::write_pan_bank(bank_path, bank, "test", "", 1);
-  const synth::PanSource pan(bank_path);
-
-  const double radius = 0.1, rho_rock = 2600, pi = 3.14159265358979323846;
-  const double volume = 4.0 / 3.0 * pi * radius * radius * radius, mass = rho_rock * volume, moment = 0.4 * mass * radius * radius;
-  io::Scene scene;
-  scene.path = "sphere-scene";
-  scene.materials["rock"] = {5e10, 0.25};
-  scene.ground_material = "rock";
-  io::SceneObject sphere;
-  sphere.id = 1;
-  sphere.mass_kg = mass;
-  sphere.volume_m3 = volume;
-  sphere.inertia_kg_m2 = {{{moment, 0, 0}, {0, moment, 0}, {0, 0, moment}}};
-  sphere.material = "rock";
-  scene.objects.push_back(sphere);
-  io::SceneEvent e;
-  e.t_s = 0.002;
-  e.a = 1;
-  e.b = 0;
-  const double angle = 0.7;  // the body is turned about z: the synthesizer must undo it
-  e.pose_a.position_m = {0.2, -0.1, 0.3};
-  e.pose_a.orientation_wxyz = {std::cos(angle / 2), 0, 0, std::sin(angle / 2)};
-  const std::array<double, 3> dir{0.6, 0.0, 0.8};  // unit, through the centre: no torque
-  e.point_m = {0.2 - radius * dir[0], -0.1 - radius * dir[1], 0.3 - radius * dir[2]};
-  const double j = 0.05;
-  e.impulse_n_s = {j * dir[0], j * dir[1], j * dir[2]};
-  e.normal_speed_m_s = 0.02;  // slow: a long contact, resolved by the demo-resolution bank
-  e.where = "sphere-scene: events[0]";
-  scene.events.push_back(e);
-  const std::array<double, 3> listener{0.2 + 0.6, -0.1 + 0.48, 0.3 + 0.64};  // 1 m away
-  scene.listeners_m.push_back(listener);
-  scene.duration_s = 0.012;
-  synth::RenderOptions options;
-  const auto out = synth::render_scene(scene, {&pan}, options);
-  // The reference: Hertz with m* = m, R* = radius, the same materials.
-  const double tau = kernels::hertz_contact_time_s(mass, radius, {5e10, 0.25}, {5e10, 0.25}, e.normal_speed_m_s);
-  const HalfSine hs{kernels::half_sine_peak(j, tau) / mass, e.t_s, tau};
-  const double cos_theta = 0.6 * dir[0] + 0.48 * dir[1] + 0.64 * dir[2];
-  const auto& p = spec.solve.problem;
-  const double err = relative_l2(out[0][0], [&](std::size_t n) {
-    return reference::translating_sphere_pressure(radius, p.c_m_s, p.rho_kg_m3, 1.0, cos_theta,
-                                                  static_cast<double>(n) / options.rate_hz, half_sine_acceleration, &hs, e.t_s,
-                                                  e.t_s + tau, 8);
-  });
-  std::printf("synth: sphere (r = 0.1 m, tau = %.3g ms) at 1 m: relative L2 %.4f vs the exact translating sphere\n",
-              tau * 1e3, err);
-  EXPECT_LT(err, 0.05);
 }
