@@ -47,7 +47,12 @@ for _ in $(seq 600); do
   compgen -G 'd.h5.tasks/p*.h5' > /dev/null && break
   sleep 0.05
 done
-pkill -TERM -P "$launcher" -x clatter-bank || pkill -TERM -x clatter-bank
+# Only this sweep's ranks: the clatter-bank processes below the launcher (a subshell, then
+# mpiexec), never those of tests running beside this one.
+descendants() { local c; for c in $(pgrep -P "$1"); do echo "$c"; descendants "$c"; done; }
+ranks=$(for p in $(descendants "$launcher"); do [[ $(ps -o comm= -p "$p") == clatter-bank ]] && echo "$p"; done)
+[[ -n $ranks ]] || fail "found no clatter-bank rank below the launcher to interrupt"
+kill -TERM $ranks
 wait "$launcher"
 code=$?
 [[ $code -eq 3 ]] || fail "interrupted sweep: exit $code, expected 3 ($(tail -5 d1.log))"
