@@ -2,9 +2,10 @@
 // Rotations by a unit quaternion (w, x, y, z), shared by the scene readers and the synthesizer.
 #include <array>
 
+#include "core/vec3.hpp"
+
 namespace clatter {
 
-using Vec3 = std::array<double, 3>;
 using Quaternion = std::array<double, 4>;  // w, x, y, z
 
 // v' = v + 2w (u x v) + 2 u x (u x v), u = (x, y, z).

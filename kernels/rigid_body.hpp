@@ -3,10 +3,11 @@
 // ellipsoid with the piece's principal moments of inertia (shape) and volume (size).
 #include <array>
 
+#include "core/vec3.hpp"
+
 namespace clatter::kernels {
 
 using Mat3 = std::array<std::array<double, 3>, 3>;
-using Vec3 = std::array<double, 3>;
 
 struct ProxyFit {
   // Semi-axes a >= b >= c [m] of the equivalent ellipsoid.

@@ -14,7 +14,6 @@
 
 namespace clatter::synth {
 
-using kernels::Vec3;
 
 struct ObjectModel {
   const io::SceneObject* object = nullptr;

@@ -18,7 +18,7 @@
 namespace {
 
 using clatter::kernels::Mat3;
-using clatter::kernels::Vec3;
+using clatter::Vec3;
 using Triangles = std::vector<std::array<int, 3>>;
 
 // A box [0, a] x [0, b] x [0, c], faces wound counter-clockwise seen from outside.
