@@ -223,15 +223,7 @@ void write_dataset(File& file, const std::string& name, std::span<const T> data,
                                   bool);                                                                         \
   template void detail::write_block<T>(File&, const std::string&, const Dims&, const Dims&, const Dims&,         \
                                        std::span<const T>, std::string_view, bool);
-CLATTER_H5_INSTANTIATE(float)
-CLATTER_H5_INSTANTIATE(double)
-CLATTER_H5_INSTANTIATE(std::int32_t)
-CLATTER_H5_INSTANTIATE(std::int64_t)
-CLATTER_H5_INSTANTIATE(std::uint8_t)
-CLATTER_H5_INSTANTIATE(std::uint32_t)
-CLATTER_H5_INSTANTIATE(std::uint64_t)
-CLATTER_H5_INSTANTIATE(std::int16_t)
-CLATTER_H5_INSTANTIATE(std::uint16_t)
+CLATTER_H5_ELEMENT_TYPES(CLATTER_H5_INSTANTIATE)
 #undef CLATTER_H5_INSTANTIATE
 
 }  // namespace clatter::io

@@ -181,15 +181,7 @@ std::vector<T> read_dataset(const File& file, const std::string& name, const std
   template std::vector<T> read_dataset<T>(const File&, const std::string&, const std::vector<long long>&,        \
                                           std::string_view, Dims*);                                              \
   template T read_attribute<T>(const File&, const std::string&, const std::string&);
-CLATTER_H5_INSTANTIATE(float)
-CLATTER_H5_INSTANTIATE(double)
-CLATTER_H5_INSTANTIATE(std::int32_t)
-CLATTER_H5_INSTANTIATE(std::int64_t)
-CLATTER_H5_INSTANTIATE(std::uint8_t)
-CLATTER_H5_INSTANTIATE(std::uint32_t)
-CLATTER_H5_INSTANTIATE(std::uint64_t)
-CLATTER_H5_INSTANTIATE(std::int16_t)
-CLATTER_H5_INSTANTIATE(std::uint16_t)
+CLATTER_H5_ELEMENT_TYPES(CLATTER_H5_INSTANTIATE)
 #undef CLATTER_H5_INSTANTIATE
 
 }  // namespace clatter::io

@@ -39,3 +39,9 @@ void write_block(File& file, const std::string& name, const Dims& global_dims, c
                  const Dims& count, std::span<const T> data, std::string_view units, bool compress);
 
 }  // namespace clatter::io::detail
+
+// Applies X to every element type the io/ templates are instantiated for (h5.cpp,
+// h5_attributes.cpp, h5_parallel.cpp): one list, so the three files cannot drift apart.
+#define CLATTER_H5_ELEMENT_TYPES(X) \
+  X(float) X(double) X(std::int32_t) X(std::int64_t) X(std::uint8_t) X(std::uint32_t) X(std::uint64_t) \
+  X(std::int16_t) X(std::uint16_t)

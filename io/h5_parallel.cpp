@@ -42,15 +42,7 @@ void write_dataset_block(File& file, const std::string& name, const Dims& global
 #define CLATTER_H5_INSTANTIATE(T)                                                                         \
   template void write_dataset_block<T>(File&, const std::string&, const Dims&, const Dims&, const Dims&, \
                                        std::span<const T>, std::string_view, bool);
-CLATTER_H5_INSTANTIATE(float)
-CLATTER_H5_INSTANTIATE(double)
-CLATTER_H5_INSTANTIATE(std::int32_t)
-CLATTER_H5_INSTANTIATE(std::int64_t)
-CLATTER_H5_INSTANTIATE(std::uint8_t)
-CLATTER_H5_INSTANTIATE(std::uint32_t)
-CLATTER_H5_INSTANTIATE(std::uint64_t)
-CLATTER_H5_INSTANTIATE(std::int16_t)
-CLATTER_H5_INSTANTIATE(std::uint16_t)
+CLATTER_H5_ELEMENT_TYPES(CLATTER_H5_INSTANTIATE)
 #undef CLATTER_H5_INSTANTIATE
 
 // Callable before MPI_Init (MPI 3.0), so --version needs no MPI start-up.

@@ -14,9 +14,13 @@
 #include "kernels/pan/field.hpp"
 #include "kernels/pan/render.hpp"
 #include "mpi/comm.hpp"
+#include "tests/reference/compare.hpp"
 #include "tests/reference/sphere_exact.hpp"
 
 using namespace clatter;
+using reference::HalfSine;
+using reference::half_sine_acceleration;
+using reference::relative_l2;
 
 namespace {
 
@@ -52,20 +56,6 @@ SphereProxy sphere_proxy(const std::string& file) {
   return out;
 }
 
-// Relative L2 of samples against a reference evaluated at each sample index.
-template <class Want>
-double relative_l2(const std::vector<double>& got, Want want) {
-  double num = 0, den = 0;
-  for (std::size_t n = 0; n < got.size(); ++n) {
-    const double w = want(n);
-    num += (got[n] - w) * (got[n] - w);
-    den += w * w;
-  }
-  return std::sqrt(num / den);
-}
-}  // namespace
-
-namespace {
 
 // Relative L2 of the bank (through the file) against raw FDTD signals at held-out radii (midway
 // between consecutive fitted radii, none fitted) in a direction strictly inside a triangle, at
@@ -150,16 +140,6 @@ TEST(PanBank, SphereProxyReproducesTheExactTranslatingSphere) {
     EXPECT_LT(err, 0.05) << "r = " << r;
   }
 }
-
-namespace {
-struct HalfSine {
-  double peak, t0, tau;
-};
-double half_sine_acceleration(double t, const void* context) {
-  const auto* h = static_cast<const HalfSine*>(context);
-  return h->peak * kernels::half_sine(t, h->t0, h->tau);
-}
-}  // namespace
 
 TEST(PanRender, HalfSineImpactOnASphereMatchesTheExactTranslatingSphere) {
   // A sphere of radius 0.1 m (the B = C = 0.5 proxy scaled by beta = 0.2) hit along x: a half-sine

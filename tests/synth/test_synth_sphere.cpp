@@ -13,33 +13,19 @@
 #include "kernels/contact.hpp"
 #include "synth/render_scene.hpp"
 #include "synth/sources.hpp"
+#include "tests/reference/compare.hpp"
 #include "tests/reference/sphere_exact.hpp"
 
 using namespace clatter;
+using reference::HalfSine;
+using reference::half_sine_acceleration;
+using reference::relative_l2;
 
 namespace {
 
 std::string bank_path;
 
-struct HalfSine {
-  double peak, t0, tau;
-};
-double half_sine_acceleration(double t, const void* context) {
-  const auto* h = static_cast<const HalfSine*>(context);
-  return h->peak * kernels::half_sine(t, h->t0, h->tau);
-}
 
-// Relative L2 of samples against a reference evaluated at each sample index.
-template <class Want>
-double relative_l2(const std::vector<double>& got, Want want) {
-  double num = 0, den = 0;
-  for (std::size_t n = 0; n < got.size(); ++n) {
-    const double w = want(n);
-    num += (got[n] - w) * (got[n] - w);
-    den += w * w;
-  }
-  return std::sqrt(num / den);
-}
 
 }  // namespace
 
