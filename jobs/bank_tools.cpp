@@ -86,7 +86,6 @@ std::string probe_csv(const ProbeRequest& r) {
   return out;
 }
 
-
 namespace {
 
 // Serial work that every rank does (so all agree on errors) and rank 0 prints.

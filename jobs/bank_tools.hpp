@@ -1,5 +1,5 @@
 #pragma once
-// `clatter-bank info` and `clatter-bank probe`: reading a PAN bank back (serial, rank 0 prints).
+// `clatter-bank info`, `probe` and `checksum`: reading a bank back (serial work, rank 0 prints).
 #include <array>
 #include <string>
 

@@ -101,7 +101,6 @@ void run_field(MPI_Comm comm, const io::Config& config, const std::string& out_p
                double(n) * n * n * sizeof(float) / (1024.0 * 1024.0));
 }
 
-
 Command add_field_command(CLI::App& parent) {
   auto* app = parent.add_subcommand("field", "sample the exact pressure of a psi-driven monopole on a distributed grid "
                                              "and write it with collective HDF5 (the foundation demo)");

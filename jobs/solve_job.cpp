@@ -190,7 +190,6 @@ void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult
   file.commit();
 }
 
-
 Command add_solve_command(CLI::App& parent) {
   auto* app = parent.add_subcommand("solve", "FDTD solves around one rigid ellipsoid for the chosen rigid-body fields, "
                                              "recorded at listener points");

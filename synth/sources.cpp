@@ -11,7 +11,7 @@
 
 namespace clatter::synth {
 
-PanSource::PanSource(const std::string& bank_path) : path_(bank_path), bank_(io::read_pan_bank(bank_path)) {
+PanSource::PanSource(const std::string& bank_path) : bank_(io::read_pan_bank(bank_path)) {
   if (bank_.proxies.empty()) throw InputError(bank_path + ": the bank holds no proxies");
 }
 
@@ -50,7 +50,7 @@ void PanSource::add(const Impact& im, const Vec3& listener, int rate_hz, std::ve
     a.peak[i] = f * n[i] / m;                                  // translation, eq. (9) fields 1-3
     a.peak[3 + i] = f * torque[i] / fit.moments_kg_m2[i];      // rotation about the principal axes
   }
-  kernels::pan::render_impact(bank_.header, bank_.proxies[p], beta, bank_.header.h_s, lp, a, rate_hz, 0.0, out);
+  kernels::pan::render_impact(bank_.header, bank_.proxies[p], beta, lp, a, rate_hz, 0.0, out);
 }
 
 }  // namespace clatter::synth

@@ -14,7 +14,6 @@
 
 namespace clatter::synth {
 
-
 struct ObjectModel {
   const io::SceneObject* object = nullptr;
   kernels::ProxyFit proxy;  // the equivalent ellipsoid (eq. 11, volume matched)
@@ -47,7 +46,6 @@ class PanSource : public SoundSource {
  private:
   std::size_t nearest_proxy(const kernels::ProxyFit& fit) const;  // closest (B, C) at the bank's A
 
-  std::string path_;
   model::PanBank bank_;  // as read, evaluated in place (kernels/pan)
 };
 

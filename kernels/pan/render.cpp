@@ -69,11 +69,11 @@ PulseWeights half_sine_weights(double t0, double tau, double step) {
   return out;
 }
 
-void render_impact(const model::PanBankHeader& bank, const model::PanProxy& proxy, double beta, double h_s,
+void render_impact(const model::PanBankHeader& bank, const model::PanProxy& proxy, double beta,
                    const std::array<double, 3>& x_m, const HalfSineAcceleration& a, double rate_hz, double t_begin_s,
                    std::span<double> out) {
   const Series p = evaluate_sum(bank, proxy, a.peak, x_m, beta, rate_hz);
-  const double step = beta * h_s;
+  const double step = beta * bank.h_s;
   const PulseWeights w = half_sine_weights(a.t0_s, a.tau_s, step);
   thread_local std::vector<std::array<double, 4>> poly;
   catmull_rom(p.p, poly);

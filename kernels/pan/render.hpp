@@ -32,8 +32,9 @@ PulseWeights half_sine_weights(double t0_s, double tau_s, double step_s);
 
 // Adds the impact's pressure at x (proxy frame, metres, outside the scaled bounding sphere) into
 // `out`, whose sample n is at t_begin_s + n / rate_hz. Samples outside `out` are dropped. The
-// proxy's solved fields all radiate (a.peak[i] weighs field i + 1); h_s is the basis step at beta = 1.
-void render_impact(const model::PanBankHeader& bank, const model::PanProxy& proxy, double beta, double h_s,
+// proxy's solved fields all radiate (a.peak[i] weighs field i + 1); the pulse basis step is the
+// bank's h_s scaled by beta.
+void render_impact(const model::PanBankHeader& bank, const model::PanProxy& proxy, double beta,
                    const std::array<double, 3>& x_m, const HalfSineAcceleration& a, double rate_hz, double t_begin_s,
                    std::span<double> out);
 

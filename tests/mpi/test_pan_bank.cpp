@@ -156,7 +156,7 @@ TEST(PanRender, HalfSineImpactOnASphereMatchesTheExactTranslatingSphere) {
   const HalfSine hs{a.peak[0], a.t0_s, a.tau_s};
   for (const std::array<double, 3> x : {std::array<double, 3>{0.6, 0.48, 0.64}, {-0.8, 0.0, 0.6}}) {
     std::vector<double> out(static_cast<std::size_t>(0.012 * rate), 0.0);
-    kernels::pan::render_impact(sphere.bank, sphere.proxy, beta, p.h_s, x, a, rate, 0.0, out);
+    kernels::pan::render_impact(sphere.bank, sphere.proxy, beta, x, a, rate, 0.0, out);
     const double err = relative_l2(out, [&](std::size_t n) {
       return reference::translating_sphere_pressure(radius, p.c_m_s, p.rho_kg_m3, 1.0, x[0], static_cast<double>(n) / rate,
                                                     half_sine_acceleration, &hs, a.t0_s, a.t0_s + a.tau_s, 8);

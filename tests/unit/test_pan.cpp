@@ -275,8 +275,9 @@ TEST(PanRender, AScaledObjectFollowsEquation10) {
   // ratio: P^(gamma beta h)(gamma x, gamma t) = gamma^s P^(beta h)(x, t). Algorithm 1 makes the
   // same level choice for both, so the samples agree to round-off.
   for (int field : {2, 6}) {
-    const auto b = build(0.0, field);
-    const double beta = 0.1, gamma = 2.5, h = b.bank.dt_s * 2, rate = 44100;
+    auto b = build(0.0, field);
+    const double beta = 0.1, gamma = 2.5, rate = 44100;
+    b.bank.h_s = b.bank.dt_s * 2;
     const std::array<double, 3> x{0.3, -0.4, 0.5};
     HalfSineAcceleration a;
     a.t0_s = 0.001;
@@ -286,8 +287,8 @@ TEST(PanRender, AScaledObjectFollowsEquation10) {
     a2.t0_s *= gamma;
     a2.tau_s *= gamma;
     std::vector<double> one(400, 0.0), two(400, 0.0);
-    render_impact(b.bank, b.proxy, beta, h, x, a, rate, 0.0, one);
-    render_impact(b.bank, b.proxy, gamma * beta, h, {gamma * x[0], gamma * x[1], gamma * x[2]}, a2, rate / gamma, 0.0, two);
+    render_impact(b.bank, b.proxy, beta, x, a, rate, 0.0, one);
+    render_impact(b.bank, b.proxy, gamma * beta, {gamma * x[0], gamma * x[1], gamma * x[2]}, a2, rate / gamma, 0.0, two);
     const double power = field <= 3 ? gamma : gamma * gamma;
     double peak = 0;
     for (double v : one) peak = std::max(peak, std::abs(v));
