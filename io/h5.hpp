@@ -123,6 +123,7 @@ template <Element T>
 T read_attribute(const File& file, const std::string& object, const std::string& name);
 std::string read_string_attribute(const File& file, const std::string& object, const std::string& name);
 
+bool has_attribute(const File& file, const std::string& object, const std::string& name);
 bool exists(const File& file, const std::string& name);
 // Creates a group (and its parents). Collective on a parallel file.
 void create_group(File& file, const std::string& name);

@@ -125,6 +125,10 @@ T read_attribute(const File& file, const std::string& object, const std::string&
   return value;
 }
 
+bool has_attribute(const File& file, const std::string& object, const std::string& name) {
+  return H5Aexists(open_object(file, object).get(), name.c_str()) > 0;
+}
+
 bool exists(const File& file, const std::string& name) {
   // H5Lexists needs every parent link to exist, so walk the path one component at a time.
   std::size_t pos = 0;

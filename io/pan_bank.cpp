@@ -6,6 +6,7 @@
 #include "core/errors.hpp"
 #include "io/h5.hpp"
 #include "io/provenance.hpp"
+#include "io/sweep_files.hpp"
 
 namespace clatter::io {
 
@@ -112,17 +113,7 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
   write_dataset<std::int16_t>(file, "/coefficients/values", quantized, {delta.size(), n_terms}, "1", true);
   write_dataset<float>(file, "/coefficients/scale", scale, {n_proxies, 6, n_dirs, n_terms}, "Pa m^k per unit acceleration",
                        true);
-  create_group(file, "/sweep");
-  const auto join = [](const std::vector<std::string>& lines) {
-    std::string text;
-    for (const auto& l : lines) text += l + "\n";
-    return text;
-  };
-  write_attribute<std::uint32_t>(file, "/sweep", "tasks_total", bank.sweep.tasks_total);
-  write_attribute<std::uint32_t>(file, "/sweep", "n_failed", static_cast<std::uint32_t>(bank.sweep.failed.size()));
-  write_attribute<std::uint32_t>(file, "/sweep", "n_missing", static_cast<std::uint32_t>(bank.sweep.missing.size()));
-  write_attribute(file, "/sweep", "failed", join(bank.sweep.failed));
-  write_attribute(file, "/sweep", "missing", join(bank.sweep.missing));
+  write_sweep_status(file, bank.sweep);
   write_provenance(file, command, config_toml, n_ranks);
   file.commit();
 }
@@ -237,18 +228,7 @@ PanBank read_pan_bank(const std::string& path) {
     }
     bank.proxies.push_back(std::move(proxy));
   }
-  bank.sweep.tasks_total = read_attribute<std::uint32_t>(file, "/sweep", "tasks_total");
-  const auto split = [](const std::string& text) {
-    std::vector<std::string> lines;
-    for (std::size_t p = 0, e; p < text.size(); p = e + 1) {
-      e = text.find('\n', p);
-      if (e == std::string::npos) e = text.size();
-      if (e > p) lines.push_back(text.substr(p, e - p));
-    }
-    return lines;
-  };
-  bank.sweep.failed = split(read_string_attribute(file, "/sweep", "failed"));
-  bank.sweep.missing = split(read_string_attribute(file, "/sweep", "missing"));
+  bank.sweep = read_sweep_status(file);
   return bank;
 }
 

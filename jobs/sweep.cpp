@@ -13,8 +13,6 @@
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/stage_log.hpp"
-#include "io/content_hash.hpp"
-#include "io/provenance.hpp"
 #include "io/text_file.hpp"
 #include "jobs/run_options.hpp"
 #include "mpi/comm.hpp"
@@ -24,10 +22,6 @@ namespace fs = std::filesystem;
 
 namespace clatter::jobs {
 namespace {
-
-const io::HashExclusions kTaskHashExclusions{{}, {"content_hash"}};
-
-std::string sweep_id(const std::string& config_toml) { return io::hash_hex(io::text_hash(config_toml)); }
 
 std::string manifest_path(const std::string& dir) { return (fs::path(dir) / "sweep.toml").string(); }
 
@@ -66,19 +60,6 @@ int remove_stale_temporaries(const std::string& dir, const std::vector<std::stri
       if (file.rfind("." + names[t] + ".h5.tmp-", 0) == 0) removed += fs::remove(entry.path()) ? 1 : 0;
   }
   return removed;
-}
-
-void write_task_file(const std::string& path, const std::string& id, const std::string& name, const std::string& status,
-                     const std::string& reason, const TaskWriter* writer) {
-  auto file = io::File::create(path);
-  io::write_header(file, kTaskFormat, kTaskFormatVersion);
-  io::write_attribute(file, "/", "sweep_id", id);
-  io::write_attribute(file, "/", "task", name);
-  io::write_attribute(file, "/", "status", status);
-  io::write_attribute(file, "/", "reason", reason);
-  if (writer) (*writer)(file, "/result");
-  io::write_attribute(file, "/", "content_hash", io::hash_hex(io::content_hash(file, kTaskHashExclusions)));
-  file.commit();
 }
 
 // A counter on world rank 0 that group leaders advance with one atomic fetch-and-add.
@@ -134,14 +115,16 @@ std::string scan_results(const std::vector<std::string>& names, const std::vecto
   std::string pending_text;
   std::size_t present = 0;
   for (std::size_t t : slice) {
-    const TaskRecord r = inspect_task(o.results_dir, names[t], config_toml);
-    if (r.state != TaskState::missing) ++present;
-    if (r.state == TaskState::done) {
+    const std::string path = io::task_path(o.results_dir, names[t]);
+    const io::TaskRecord r = io::inspect_task(path, names[t], io::sweep_id(config_toml));
+    if (r.state == io::TaskState::foreign) throw foreign_task_error(path, r, config_toml);
+    if (r.state != io::TaskState::missing) ++present;
+    if (r.state == io::TaskState::done) {
       ++done_before;
       continue;
     }
-    if (r.state == TaskState::failed) spdlog::info("sweep: retrying {} (failed before: {})", names[t], r.reason);
-    if (r.state == TaskState::invalid) spdlog::warn("sweep: redoing {}: {}", names[t], r.reason);
+    if (r.state == io::TaskState::failed) spdlog::info("sweep: retrying {} (failed before: {})", names[t], r.reason);
+    if (r.state == io::TaskState::invalid) spdlog::warn("sweep: redoing {}: {}", names[t], r.reason);
     pending_text += std::to_string(t) + " ";
   }
   if (present > 0 && !o.resume)
@@ -226,12 +209,12 @@ TaskOutcome run_task(const TaskRunner& runner, MPI_Comm group, std::size_t task)
 // cannot be written). Returns the failure, empty when done.
 std::string record_task(const SweepRun& run, std::size_t task, const TaskOutcome& outcome) {
   const std::string& name = run.names[task];
-  const std::string path = task_path(run.results_dir, name);
+  const std::string path = io::task_path(run.results_dir, name);
   std::string failure = outcome.failure;
   if (failure.empty()) {
     try {
       Stage stage("write task");
-      write_task_file(path, run.id, name, "done", "", &outcome.writer);
+      io::write_task_file(path, run.id, name, "done", "", &outcome.writer);
     } catch (const std::exception& e) {
       failure = fmt::format("writing the result: {}", e.what());
     }
@@ -239,7 +222,7 @@ std::string record_task(const SweepRun& run, std::size_t task, const TaskOutcome
   if (!failure.empty()) {
     spdlog::error("sweep: task {} failed: {}", name, failure);
     try {
-      write_task_file(path, run.id, name, "failed", failure, nullptr);
+      io::write_task_file(path, run.id, name, "failed", failure, nullptr);
     } catch (const std::exception& e) {
       spdlog::error("sweep: cannot record the failure of {} either: {}", name, e.what());
     }
@@ -305,35 +288,15 @@ void reduce_over_groups(MPI_Comm world, bool leader, SweepReport& report) {
 
 }  // namespace
 
-std::string task_path(const std::string& results_dir, const std::string& name) {
-  return (fs::path(results_dir) / (name + ".h5")).string();
-}
-
 std::string read_sweep_config(const std::string& results_dir) {
   const std::string path = manifest_path(results_dir);
   if (!fs::exists(path)) throw InputError(fmt::format("{}: not a sweep results folder (no sweep.toml)", results_dir));
   return io::read_text_file(path, "the sweep manifest");
 }
 
-TaskRecord inspect_task(const std::string& results_dir, const std::string& name, const std::string& config_toml) {
-  const std::string path = task_path(results_dir, name);
-  if (!fs::exists(path)) return {TaskState::missing, ""};
-  try {
-    auto file = io::File::open(path);
-    io::check_header(file, kTaskFormat, kTaskFormatVersion);
-    if (io::read_string_attribute(file, "/", "sweep_id") != sweep_id(config_toml))
-      return {TaskState::invalid, "made by a sweep of another config"};
-    if (io::read_string_attribute(file, "/", "task") != name) return {TaskState::invalid, "holds another task"};
-    const std::string stored = io::read_string_attribute(file, "/", "content_hash");
-    const std::string actual = io::hash_hex(io::content_hash(file, kTaskHashExclusions));
-    if (stored != actual) return {TaskState::invalid, fmt::format("checksum {} != stored {}", actual, stored)};
-    const std::string status = io::read_string_attribute(file, "/", "status");
-    if (status == "done") return {TaskState::done, ""};
-    if (status == "failed") return {TaskState::failed, io::read_string_attribute(file, "/", "reason")};
-    return {TaskState::invalid, "unknown status '" + status + "'"};
-  } catch (const std::exception& e) {
-    return {TaskState::invalid, e.what()};
-  }
+InputError foreign_task_error(const std::string& path, const io::TaskRecord& record, const std::string& config_toml) {
+  return InputError(fmt::format("{}: a task file of another sweep (sweep id {}, this sweep's is {}); move it away",
+                                path, record.reason, io::sweep_id(config_toml)));
 }
 
 SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, const std::string& config_toml,
@@ -343,7 +306,7 @@ SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, con
   report.total = names.size();
   const std::vector<std::size_t> slice = slice_tasks(names.size(), o);
   report.in_slice = slice.size();
-  const std::string id = sweep_id(config_toml);
+  const std::string id = io::sweep_id(config_toml);
   std::optional<mpi::TaskGroups> groups_storage;  // first: a bad --ranks-per-task creates nothing
   mpi::agree(world, [&] { groups_storage.emplace(world, o.ranks_per_task); });
   const mpi::TaskGroups& groups = *groups_storage;

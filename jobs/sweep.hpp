@@ -16,12 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "io/h5.hpp"
+#include "core/errors.hpp"
+#include "io/sweep_files.hpp"
 
 namespace clatter::jobs {
-
-inline constexpr const char* kTaskFormat = "clatter-sweep-task";
-inline constexpr int kTaskFormatVersion = 1;
 
 struct SweepOptions {
   std::string results_dir;
@@ -32,7 +30,7 @@ struct SweepOptions {
 };
 
 // Writes a finished task's payload into its file under the given group (called on the group leader).
-using TaskWriter = std::function<void(io::File& file, const std::string& group)>;
+using TaskWriter = io::TaskPayloadWriter;
 // Runs task `task` on every rank of `group` (collectively) and returns, on the group's rank 0, the
 // writer of its result. Throws TaskFailure (the sweep records it and goes on) or Interrupted;
 // both must be raised on every rank of the group alike.
@@ -51,14 +49,8 @@ struct SweepReport {
 SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, const std::string& config_toml,
                       const SweepOptions& options, const TaskRunner& runner);
 
-// What a results folder says about one task, its checksum verified.
-enum class TaskState { missing, done, failed, invalid };
-struct TaskRecord {
-  TaskState state = TaskState::missing;
-  std::string reason;  // failed: why the task failed; invalid: what is wrong with the file
-};
-std::string task_path(const std::string& results_dir, const std::string& name);
-TaskRecord inspect_task(const std::string& results_dir, const std::string& name, const std::string& config_toml);
+// The refusal of a task file that names another sweep: its path and both sweep ids.
+InputError foreign_task_error(const std::string& path, const io::TaskRecord& record, const std::string& config_toml);
 // The config a results folder was made with (InputError if it has none).
 std::string read_sweep_config(const std::string& results_dir);
 

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "model/sweep_status.hpp"
+
 namespace clatter::model {
 
 // Sparse wavelet coefficients of q_1..q_N in one direction of one field.
@@ -39,13 +41,6 @@ struct PanProxy {
 
   const std::vector<SparseTerms>& field(int f) const { return fields.at(static_cast<std::size_t>(f - 1)); }
   bool solved(int f) const { return !field(f).empty(); }
-};
-
-// How complete the sweep that built the bank was: every proxy x field is a task.
-struct SweepStatus {
-  std::uint32_t tasks_total = 0;
-  std::vector<std::string> failed;   // "task: reason"
-  std::vector<std::string> missing;  // tasks never run (interrupted, not in this job's slice)
 };
 
 struct PanBank {
