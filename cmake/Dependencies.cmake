@@ -38,6 +38,7 @@ find_package(CLI11 2.1 REQUIRED)
 find_package(fmt 9 REQUIRED)
 find_package(spdlog 1.10 REQUIRED)
 find_package(nlohmann_json 3.11 REQUIRED)
+find_package(Threads REQUIRED)  # core/file_lock.cpp: the heartbeat thread of a lock
 pkg_check_modules(sndfile REQUIRED IMPORTED_TARGET sndfile>=1.2)
 find_package(GTest REQUIRED)
 find_package(benchmark REQUIRED)

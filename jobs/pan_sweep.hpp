@@ -16,6 +16,7 @@ struct PanSweepOptions {
   bool resume = false;
   std::string slice;              // "K/N": job array element K of N (no merge); empty: everything
   bool keep_results = false;      // keep the task files after a complete merge
+  bool force = false;             // the merge may replace any bank at OUT (jobs/output_guard.hpp)
   double progress_interval_s = 10;
   std::string command;            // for provenance and the resume hint
 };
@@ -25,6 +26,7 @@ int run_pan_sweep(MPI_Comm world, const io::Config& config, const PanSweepOption
 
 // Merges a results folder into a bank (rank 0 works; collective for the error agreement).
 // kExitOk, or kExitTasksFailed when tasks failed or are missing (the bank lists them).
-int run_pan_merge(MPI_Comm world, const std::string& results_dir, const std::string& out, const std::string& command);
+int run_pan_merge(MPI_Comm world, const std::string& results_dir, const std::string& out, const std::string& command,
+                  bool force);
 
 }  // namespace clatter::jobs

@@ -123,8 +123,9 @@ std::string scan_results(const std::vector<std::string>& names, const std::vecto
       ++done_before;
       continue;
     }
-    if (r.state == io::TaskState::failed) spdlog::info("sweep: retrying {} (failed before: {})", names[t], r.reason);
-    if (r.state == io::TaskState::invalid) spdlog::warn("sweep: redoing {}: {}", names[t], r.reason);
+    if (o.resume && r.state == io::TaskState::failed)
+      spdlog::info("sweep: retrying {} (failed before: {})", names[t], r.reason);
+    if (o.resume && r.state == io::TaskState::invalid) spdlog::warn("sweep: redoing {}: {}", names[t], r.reason);
     pending_text += std::to_string(t) + " ";
   }
   if (present > 0 && !o.resume)
@@ -136,13 +137,14 @@ std::string scan_results(const std::vector<std::string>& names, const std::vecto
   return pending_text;
 }
 
-// Rank 0 looks at the folder; everybody gets the list of pending tasks and `done_before`.
-std::vector<std::size_t> find_pending(MPI_Comm world, const std::vector<std::string>& names,
+// Rank 0 looks at the folder (its lock still held); everybody gets the list of pending tasks and `done_before`.
+std::vector<std::size_t> find_pending(MPI_Comm world, const SweepLocks& locks, const std::vector<std::string>& names,
                                       const std::vector<std::size_t>& slice, const std::string& config_toml,
                                       const SweepOptions& o, std::size_t& done_before) {
   std::string pending_text;
   mpi::agree(world, [&] {
     if (mpi::rank(world) != 0) return;
+    locks.check_held();
     pending_text = scan_results(names, slice, config_toml, o, done_before);
   });
   pending_text = mpi::broadcast(world, pending_text);
@@ -299,8 +301,8 @@ InputError foreign_task_error(const std::string& path, const io::TaskRecord& rec
                                 path, record.reason, io::sweep_id(config_toml)));
 }
 
-SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, const std::string& config_toml,
-                      const SweepOptions& o, const TaskRunner& runner) {
+SweepReport run_sweep(MPI_Comm world, const SweepLocks& locks, const std::vector<std::string>& names,
+                      const std::string& config_toml, const SweepOptions& o, const TaskRunner& runner) {
   install_interrupt_handlers();
   SweepReport report;
   report.total = names.size();
@@ -311,7 +313,7 @@ SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, con
   mpi::agree(world, [&] { groups_storage.emplace(world, o.ranks_per_task); });
   const mpi::TaskGroups& groups = *groups_storage;
 
-  const std::vector<std::size_t> pending = find_pending(world, names, slice, config_toml, o, report.done_before);
+  const std::vector<std::size_t> pending = find_pending(world, locks, names, slice, config_toml, o, report.done_before);
   spdlog::info("sweep: {} tasks in this run ({} of {} in slice {}/{}, {} already done), {} group(s) of {} rank(s), "
                "results in {}",
                pending.size(), slice.size(), names.size(), o.slice_index, o.slice_count, report.done_before,

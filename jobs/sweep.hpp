@@ -18,6 +18,7 @@
 
 #include "core/errors.hpp"
 #include "io/sweep_files.hpp"
+#include "jobs/output_guard.hpp"
 
 namespace clatter::jobs {
 
@@ -45,9 +46,10 @@ struct SweepReport {
   bool interrupted = false;
 };
 
-// Collective over `world`. `names[t]` names task t (file-name safe, unique).
-SweepReport run_sweep(MPI_Comm world, const std::vector<std::string>& names, const std::string& config_toml,
-                      const SweepOptions& options, const TaskRunner& runner);
+// Collective over `world`. `names[t]` names task t (file-name safe, unique). `locks` (taken on
+// options.results_dir and the slice) make this run the folder's one writer.
+SweepReport run_sweep(MPI_Comm world, const SweepLocks& locks, const std::vector<std::string>& names,
+                      const std::string& config_toml, const SweepOptions& options, const TaskRunner& runner);
 
 // The refusal of a task file that names another sweep: its path and both sweep ids.
 InputError foreign_task_error(const std::string& path, const io::TaskRecord& record, const std::string& config_toml);
