@@ -101,7 +101,8 @@ foreach(case
     "short|impulses_short.txt:2: missing direction n"
     "extra|impulses_extra.txt:2: unexpected '7' after the direction n"
     "word|impulses_word.txt:2: impulse J 'heavy' is not a number"
-    "unknown|impulses_unknown.txt:2: object 9 is not in the scene's objects")
+    "unknown|impulses_unknown.txt:2: object 9 is not in the scene's objects"
+    "nan|impulses_nan.txt:2: impulse J is nan: must be finite")
   string(REPLACE "|" ";" parts "${case}")
   list(POP_FRONT parts file)
   clatter_synth_error_test(bad_impulses_${file} "${parts}" -i ${bad_in}/side.json --impulses ${bad_in}/impulses_${file}.txt
