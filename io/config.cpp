@@ -170,10 +170,14 @@ Value parse_set_value(const RealList&, const Key& key, std::string_view text, co
     list = to_list(toml::find(toml::parse(in, "--set"), "v"), key.group);
   } catch (const std::exception&) {
   }
-  if (!list)
-    throw InputError(head + (key.group > 1 ? "expected an array of " + std::to_string(key.group) +
-                                                 "-element arrays, e.g. [[1, 0, 0], [0, 1, 0]]"
-                                           : std::string("expected an array of numbers, e.g. [1, 2]")));
+  if (!list) {
+    if (key.group <= 1) throw InputError(head + "expected an array of numbers, e.g. [1, 2]");
+    // The example has the key's own tuple size: a 2-tuple key shown 3-tuples misleads.
+    RealList example(2 * static_cast<std::size_t>(key.group), 0.0);
+    example[0] = example[static_cast<std::size_t>(key.group) + 1] = 1.0;
+    throw InputError(head + "expected an array of " + std::to_string(key.group) + "-element arrays, e.g. " +
+                     format_list(example, key.group));
+  }
   return std::move(*list);
 }
 

@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -25,6 +27,21 @@ using nlohmann::json;
 const json& need(const json& j, const std::string& key, const std::string& where) {
   if (!j.is_object() || !j.contains(key)) bad(where, "missing key '" + key + "'");
   return j.at(key);
+}
+
+// A list (objects, events): anything else is refused by name instead of indexed into.
+const json& need_array(const json& j, const std::string& key, const std::string& where) {
+  const json& a = need(j, key, where);
+  if (!a.is_array()) bad(where + ": " + key, std::string("expected an array, found ") + a.type_name());
+  return a;
+}
+
+// An object id >= 1 that fits an int: a larger one would wrap around into another object's id.
+std::optional<int> object_id(const json& j) {
+  if (!j.is_number_integer()) return std::nullopt;
+  const auto v = j.get<std::int64_t>();
+  if (v < 1 || v > std::numeric_limits<int>::max()) return std::nullopt;
+  return static_cast<int>(v);
 }
 
 double number(const json& j, const std::string& where) {
@@ -86,7 +103,9 @@ Scene read_setting(const json& root, const std::string& path) {
     bad(path + ": format", fmt::format("{}, expected \"clatter-scene\"", root["format"].dump()));
   if (need(root, "format_version", path) != 1)
     bad(path + ": format_version", root["format_version"].dump() + ", this build reads version 1");
-  for (const auto& [name, m] : need(root, "materials", path).items()) {
+  const json& materials = need(root, "materials", path);
+  if (!materials.is_object()) bad(path + ": materials", std::string("expected an object of named materials, found ") + materials.type_name());
+  for (const auto& [name, m] : materials.items()) {
     const std::string w = path + ": materials." + name;
     SceneMaterial mat{number(need(m, "youngs_modulus_pa", w), w + ".youngs_modulus_pa"),
                       number(need(m, "poisson_ratio", w), w + ".poisson_ratio")};
@@ -98,14 +117,15 @@ Scene read_setting(const json& root, const std::string& path) {
   if (!g.is_string() || !scene.materials.count(g.get<std::string>())) bad(path + ": ground_material", g.dump() + " is not in materials");
   scene.ground_material = g.get<std::string>();
   std::set<int> ids;
-  const json& objects = need(root, "objects", path);
+  const json& objects = need_array(root, "objects", path);
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const std::string w = fmt::format("{}: objects[{}]", path, i);
     const json& o = objects[i];
     SceneObject obj;
     const json& id = need(o, "id", w);
-    if (!id.is_number_integer() || id.get<int>() < 1) bad(w + ".id", id.dump() + ": must be an integer >= 1 (0 is the ground)");
-    obj.id = id.get<int>();
+    const auto checked_id = object_id(id);
+    if (!checked_id) bad(w + ".id", fmt::format("{}: must be an integer in [1, {}] (0 is the ground)", id.dump(), std::numeric_limits<int>::max()));
+    obj.id = *checked_id;
     if (!ids.insert(obj.id).second) bad(w + ".id", fmt::format("{} is used twice", obj.id));
     obj.where = w;
     if (o.contains("mesh"))
@@ -176,7 +196,7 @@ Scene read_scene(const std::string& path, bool read_events) {
   Scene scene = read_setting(root, path);
   if (!read_events) return scene;
   const ObjectIndex objects = index_objects(scene);
-  const json& events = need(root, "events", path);
+  const json& events = need_array(root, "events", path);
   double previous = 0;
   for (std::size_t i = 0; i < events.size(); ++i) {
     const json& j = events[i];
@@ -184,13 +204,13 @@ Scene read_scene(const std::string& path, bool read_events) {
     e.where = fmt::format("{}: events[{}]", path, i);
     e.t_s = number(need(j, "t_s", e.where), e.where + ".t_s");
     const json& a = need(j, "a", e.where);
-    if (!a.is_number_integer()) bad(e.where + ".a", a.dump() + ": expected an object id");
-    e.a = a.get<int>();
+    if (!object_id(a)) bad(e.where + ".a", a.dump() + ": expected an object id");
+    e.a = *object_id(a);
     const json& b = need(j, "b", e.where);
     if (b == "ground")
       e.b = 0;
-    else if (b.is_number_integer() && b.get<int>() >= 1)
-      e.b = b.get<int>();
+    else if (object_id(b))
+      e.b = *object_id(b);
     else
       bad(e.where + ".b", b.dump() + ": expected an object id or \"ground\"");
     e.point_m = vec<3>(need(j, "point_m", e.where), e.where + ".point_m");

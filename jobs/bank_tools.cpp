@@ -75,7 +75,10 @@ std::string probe_csv(const ProbeRequest& r) {
   if (proxy->field(r.field).size() != h.directions.size())
     throw InputError(fmt::format("{}: field {} was not solved for this proxy", r.bank_path, r.field));
   if (!(r.scale > 0)) throw InputError(fmt::format("--scale {}: must be > 0", r.scale));
+  if (!(r.rate_hz >= 0)) throw InputError(fmt::format("--rate {}: must be >= 0 Hz (0: the bank's own rate)", r.rate_hz));
   const double dist = std::hypot(r.point_m[0], r.point_m[1], r.point_m[2]);
+  if (!std::isfinite(dist))  // else NaN fails the bounding-sphere test below and is reported as inside
+    throw InputError(fmt::format("--point {},{},{}: coordinates must be finite", r.point_m[0], r.point_m[1], r.point_m[2]));
   if (!(dist > h.a_m * r.scale))
     throw InputError(fmt::format("--point {},{},{}: |x| = {} m is inside the proxy's bounding sphere (radius A beta = {} m)",
                                  r.point_m[0], r.point_m[1], r.point_m[2], dist, h.a_m * r.scale));

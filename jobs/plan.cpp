@@ -194,7 +194,8 @@ exit "$rc"
 
 std::string run_plan(const io::Config& config, const PlanOptions& o) {
   const PanSpec spec = make_pan_spec(config);
-  if (o.ranks < 1 || o.ranks_per_task < 1 || o.ranks % o.ranks_per_task != 0)
+  if (o.ranks < 1) throw InputError(fmt::format("--ranks {}: must be >= 1", o.ranks));
+  if (o.ranks_per_task < 1 || o.ranks % o.ranks_per_task != 0)
     throw InputError(fmt::format("--ranks {} --ranks-per-task {}: the ranks per task must divide the ranks", o.ranks,
                                  o.ranks_per_task));
   const auto tasks = pan_tasks(spec);

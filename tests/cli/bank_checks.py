@@ -3,7 +3,7 @@
 
 1. probe in each of the 8 octants equals +- the positive-octant probe exactly, with the signs of
    eqs. (16)-(21); 2. probe --scale beta equals eq. (10) applied to the unscaled probe, to float
-   round-off; 3. bad banks and bad requests exit non-zero with one clear line and print no CSV.
+   round-off; 3. bad banks and bad requests exit 2 with one clear line and print no CSV.
 """
 import os
 import shutil
@@ -66,11 +66,11 @@ for field in (1, 6):
     check(f"scaling field {field}", ok_t and ok_p, "times or pressures differ from eq. (10)")
 
 
-# 3. bad input: non-zero exit, one line naming the problem, no CSV
+# 3. bad input: exit 2, one line naming the problem, no CSV
 def bad(name, expect, *args, bank_path=bank):
     r = probe(*args, bank_path=bank_path)
     lines = [l for l in r.stderr.splitlines() if l.startswith("clatter-bank:")]
-    check(f"bad input: {name}", r.returncode != 0 and len(lines) == 1 and expect in lines[0] and "t_s,p_Pa" not in r.stdout,
+    check(f"bad input: {name}", r.returncode == 2 and len(lines) == 1 and expect in lines[0] and "t_s,p_Pa" not in r.stdout,
           f"rc {r.returncode}, stderr {r.stderr.strip()!r}")
 
 

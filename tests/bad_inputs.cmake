@@ -1,0 +1,155 @@
+# ---- the bad-input catalogue (docs/validation.md): one test per rejected input class that the
+# tests in CMakeLists.txt, synth_checks and pan_probe_checks do not already cover. Each asserts the
+# exit code, the one error line and that nothing is left behind (cli/expect_error.sh).
+set(bad_in ${CMAKE_CURRENT_SOURCE_DIR}/cli/bad_inputs)
+set(tiny ${bad}/pan_tiny.toml)
+
+# clatter_synth_error_test(NAME "PATTERN;PATTERN" ARGS...): clatter-synth ARGS exits 2 with one line
+# naming the patterns and writes nothing. The test bank is there, so only the named input is bad.
+function(clatter_synth_error_test name patterns)
+  string(REPLACE ";" "|" patterns "${patterns}")
+  add_test(NAME ${name} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/expect_error.sh 2
+           ${CMAKE_CURRENT_BINARY_DIR}/${name} "${patterns}" -- ${CLATTER_BIN}/clatter-synth ${ARGN})
+  set_tests_properties(${name} PROPERTIES LABELS unit TIMEOUT 60 FIXTURES_REQUIRED pan_bank)
+endfunction()
+set(good_bank ${CMAKE_CURRENT_BINARY_DIR}/pan/bank.h5)
+
+# config: the schema step
+clatter_error_test(bad_config_outside_section 0 "outside_section.toml:2;unknown key 'n_cells';belong in a [section]"
+                   field -c ${bad}/outside_section.toml -o out.h5)
+clatter_error_test(bad_config_unknown_section 0 "unknown_section.toml:3;unknown key 'gird.n_cells';did you mean 'grid.n_cells'"
+                   field -c ${bad}/unknown_section.toml -o out.h5)
+clatter_error_test(bad_config_nan 0 "nan_value.toml:3;'grid.dx_m' = nan;must be in (0, 10]" field -c ${bad}/nan_value.toml -o out.h5)
+clatter_error_test(bad_config_choice 0 "bad_choice.toml:3;'object.kind' = \"cube\";must be one of ellipsoid, monopole"
+                   solve -c ${bad}/bad_choice.toml -o out.h5)
+clatter_error_test(bad_config_tuple 0 "--set 'proxies.list_m=[0.5, 0.3]';expected an array of 2-element arrays, e.g. [[1.0, 0.0], [0.0, 1.0]]"
+                   pan "--set=proxies.list_m=[0.5, 0.3]" -o out.h5)
+# config: the job's checks over several keys
+clatter_error_test(bad_solve_no_fields 0 "'solve.fields' is empty" solve "--set=solve.fields=[]" -o out.h5)
+clatter_error_test(bad_solve_no_listeners 0 "'listeners.points_m' is empty" solve "--set=listeners.points_m=[]" -o out.h5)
+clatter_error_test(bad_pan_proxy_order 0 "'proxies.list_m' proxy 1 = [0.2, 0.3];C <= B <= A = 0.5"
+                   pan "--set=proxies.list_m=[[0.2, 0.3]]" -o out.h5)
+clatter_error_test(bad_pan_odd_divisions 0 "'fit.divisions' has 7;must be even" pan --set fit.divisions=7 -o out.h5)
+clatter_error_test(bad_pan_radius_inside 0 "'fit.radii_m' has 0.55;outside the bounding sphere (A = 0.5 m) by two cells"
+                   pan "--set=fit.radii_m=[0.55, 1.0]" -o out.h5)
+clatter_error_test(bad_pan_too_few_radii 0 "'fit.radii_m' has 1 radii;at least fit.terms = 2" pan "--set=fit.radii_m=[1.0]" -o out.h5)
+clatter_error_test(bad_pan_cfl_np2 2 "'time.dt_s' = 0.0001;CFL limit" pan --set grid.dx_m=0.01 --set time.dt_s=1e-4 -o out.h5)
+
+# command-line options
+clatter_error_test(bad_no_subcommand 0 "A subcommand is required;clatter-bank --help")
+clatter_error_test(bad_missing_argument 0 "bank is required" info)
+clatter_error_test(bad_log_level 0 "--log-level: loud not in {error,warn,info,debug}" --log-level loud field -o out.h5)
+clatter_error_test(bad_slice 0 "--slice '2/2';expected K/N with 0 <= K < N" pan -c ${tiny} --slice 2/2 -o out.h5)
+clatter_error_test(bad_slice_syntax 0 "--slice 'x';expected K/N" pan -c ${tiny} --slice x -o out.h5)
+clatter_error_test(bad_ranks_per_task 0 "--ranks-per-task 2;divide the 1 MPI ranks" pan -c ${tiny} --ranks-per-task 2 -o out.h5)
+clatter_error_test(bad_ranks_per_task_np2 2 "--ranks-per-task 3;divide the 2 MPI ranks" pan -c ${tiny} --ranks-per-task 3 -o out.h5)
+clatter_error_test(bad_merge_not_results 0 "nowhere.tasks: not a sweep results folder (no sweep.toml)"
+                   merge --results nowhere.tasks -o out.h5)
+clatter_error_test(bad_plan_ranks 0 "--ranks 0;must be >= 1" plan -c ${tiny} --ranks 0)
+set(probe_args probe ${good_bank} --proxy 0.35,0.2 --field 1)
+clatter_error_test(bad_probe_rate 0 "--rate -5;must be >= 0 Hz" ${probe_args} --point 1,0.5,0.5 --rate -5)
+clatter_error_test(bad_probe_point_nan 0 "--point 1,nan,0.5;coordinates must be finite" ${probe_args} --point 1,nan,0.5)
+set_tests_properties(bad_probe_rate bad_probe_point_nan PROPERTIES FIXTURES_REQUIRED pan_bank)
+clatter_synth_error_test(bad_synth_option "not expected: --frobnicate;clatter-synth --help" -i ${bad_in}/good.json -b ${good_bank} --frobnicate)
+clatter_synth_error_test(bad_synth_missing_bank "--bank is required" -i ${bad_in}/good.json)
+clatter_synth_error_test(bad_synth_rate "--rate 100;must be in [8000, 384000] Hz" -i ${bad_in}/good.json -b ${good_bank} --rate 100)
+clatter_synth_error_test(bad_synth_format "--format: mp3 not in {float,pcm24}" -i ${bad_in}/good.json -b ${good_bank} --format mp3)
+clatter_synth_error_test(bad_synth_pcm24_range "--format pcm24;beyond the 24-bit range;add --normalize"
+                         -i ${bad_in}/good.json -b ${good_bank} --format pcm24)
+
+# scenes: each file is good.json with one defect
+foreach(case
+    "nowhere|nowhere.json: cannot open the scene file"
+    "malformed|malformed.json: not valid JSON|parse error at line 4"
+    "wrong_format|wrong_format.json: format: \"clatter-pan-bank\", expected \"clatter-scene\""
+    "missing_key|missing_key.json: objects[0]: missing key 'mass_kg'"
+    "wrong_type|wrong_type.json: objects[0].mass_kg: expected a number, found \"0.78\""
+    "not_an_array|not_an_array.json: objects: expected an array, found object"
+    "short_vector|short_vector.json: events[0].point_m: expected an array of 3 numbers"
+    "duplicate_id|duplicate_id.json: objects[1].id: 1 is used twice"
+    "huge_id|huge_id.json: objects[0].id: 4294967297: must be an integer in [1, 2147483647]"
+    "bad_poisson|bad_poisson.json: materials.rock.poisson_ratio: 0.5: must be in [0, 0.5)"
+    "unknown_ground|unknown_ground.json: ground_material: \"lava\" is not in materials"
+    "lifetime|lifetime.json: objects[1].destroyed_s: 0.2: must be after created_s = 0.5"
+    "quaternion|quaternion.json: events[0].pose_a.orientation_wxyz|has norm 1.118|must be a unit quaternion"
+    "negative_time|negative_time.json: events[0]: time -0.01 s: must be >= 0"
+    "normal_speed|normal_speed.json: events[0]: normal speed 0 m/s: must be > 0"
+    "self_collision|self_collision.json: events[0]: object 1 collides with itself"
+    "no_listeners|no_listeners.json: listeners: expected at least one listener")
+  string(REPLACE "|" ";" parts "${case}")
+  list(POP_FRONT parts file)
+  clatter_synth_error_test(bad_scene_${file} "${parts}" -i ${bad_in}/${file}.json -b ${good_bank})
+endforeach()
+
+# OBJ meshes: box.json with box.obj replaced by a broken one
+foreach(case
+    "mesh_bad_index|mesh_bad_index.obj:15: face corner 9 is not one of the 8 vertices"
+    "mesh_nan|mesh_nan.obj:9: vertex coordinate is nan: must be finite"
+    "mesh_flipped|mesh_flipped.obj:15: edge 6-8 runs the same way in the face on line 11"
+    "mesh_nonmanifold|mesh_nonmanifold.obj:17: edge 5-6 runs the same way|more than two meet at that edge"
+    "mesh_repeated|mesh_repeated.obj:15: face repeats vertex 4"
+    "mesh_few|mesh_few.obj: 2 triangles: a closed mesh needs at least 4")
+  string(REPLACE "|" ";" parts "${case}")
+  list(POP_FRONT parts file)
+  clatter_synth_error_test(bad_${file} "objects[0].mesh;${parts}" -i ${bad_in}/${file}.json -b ${good_bank})
+endforeach()
+
+# James-lab impulse files, read with side.json (good.json without events)
+foreach(case
+    "nowhere|impulses_nowhere.txt: cannot open the impulse file"
+    "letter|impulses_letter.txt:2: 'X': expected C (object-ground) or P (object pair)"
+    "short|impulses_short.txt:2: missing direction n"
+    "extra|impulses_extra.txt:2: unexpected '7' after the direction n"
+    "word|impulses_word.txt:2: impulse J 'heavy' is not a number"
+    "unknown|impulses_unknown.txt:2: object 9 is not in the scene's objects"
+    "nan|impulses_nan.txt:2: impulse J is nan: must be finite")
+  string(REPLACE "|" ";" parts "${case}")
+  list(POP_FRONT parts file)
+  clatter_synth_error_test(bad_impulses_${file} "${parts}" -i ${bad_in}/side.json --impulses ${bad_in}/impulses_${file}.txt
+                           -b ${good_bank})
+endforeach()
+
+# The good inputs the bad ones are made from render, so each bad test fails for its one defect.
+add_test(NAME bad_inputs_good_ones COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/good_inputs.sh ${CLATTER_BIN} ${bad_in} ${good_bank}
+         ${tiny} ${CMAKE_CURRENT_BINARY_DIR}/good_inputs)
+set_tests_properties(bad_inputs_good_ones PROPERTIES FIXTURES_REQUIRED pan_bank ENVIRONMENT "${CLATTER_MPI_ENV}" LABELS unit TIMEOUT 60)
+
+# PAN bank files: bad copies of the test bank (cli/make_bad_banks.py), read by clatter-synth and info
+set(bad_banks ${CMAKE_CURRENT_BINARY_DIR}/bad_banks)
+add_test(NAME bad_banks_setup COMMAND ${CLATTER_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/make_bad_banks.py ${good_bank} ${bad_banks})
+set_tests_properties(bad_banks_setup PROPERTIES FIXTURES_REQUIRED pan_bank FIXTURES_SETUP bad_banks LABELS unit)
+foreach(case
+    "missing|missing.h5: no such file"
+    "not_hdf5|not_hdf5.h5: not a readable HDF5 file"
+    "truncated|truncated.h5: not a readable HDF5 file"
+    "no_format|no_format.h5: not a Clatter file (no 'format' attribute)|expected format 'clatter-pan-bank'"
+    "wrong_format|wrong_format.h5: format 'clatter-fdtd-raw', expected 'clatter-pan-bank'"
+    "wrong_version|wrong_version.h5: format 'clatter-pan-bank' version 1, this build reads version 2"
+    "wrong_shape|wrong_shape.h5: dataset '/proxies/c_m': expected float64 [2] in 'm', found float64 [1]"
+    "corrupt|corrupt.h5: dataset '/coefficients/values' cannot be read: corrupt or truncated file"
+    "index_out_of_range|index_out_of_range.h5: '/coefficients/index_delta' gives coefficient index 512 outside [0, 512)")
+  string(REPLACE "|" ";" parts "${case}")
+  list(POP_FRONT parts file)
+  clatter_synth_error_test(bad_bank_${file} "${parts}" -i ${bad_in}/good.json -b ${bad_banks}/${file}.h5)
+  set_tests_properties(bad_bank_${file} PROPERTIES FIXTURES_REQUIRED "pan_bank;bad_banks")
+endforeach()
+clatter_error_test(bad_bank_info_corrupt 0 "corrupt.h5;cannot be read: corrupt or truncated file" info ${bad_banks}/corrupt.h5)
+clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads version 2" info ${bad_banks}/wrong_version.h5)
+set_tests_properties(bad_bank_info_corrupt bad_bank_info_version PROPERTIES FIXTURES_REQUIRED bad_banks)
+
+# sweep results folders (cli/make_bad_results.sh)
+set(bad_results ${CMAKE_CURRENT_BINARY_DIR}/bad_results)
+add_test(NAME bad_results_setup COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/make_bad_results.sh ${CLATTER_BIN}/clatter-bank ${tiny} ${bad_results})
+set_tests_properties(bad_results_setup PROPERTIES FIXTURES_SETUP bad_results ENVIRONMENT "${CLATTER_MPI_ENV}" LABELS unit)
+clatter_error_test(bad_results_other_config 0 "--results ${bad_results}/other.tasks: holds a sweep of another config"
+                   pan -c ${tiny} --results ${bad_results}/other.tasks -o out.h5)
+clatter_error_test(bad_results_without_resume 0 "present.tasks: already holds 1 of this sweep's task files;add --resume"
+                   pan -c ${tiny} --results ${bad_results}/present.tasks -o out.h5)
+set_tests_properties(bad_results_other_config bad_results_without_resume PROPERTIES FIXTURES_REQUIRED bad_results)
+# Accepted, not refused: an unreadable task file is redone on --resume and the bank is written.
+add_test(NAME bad_results_corrupt_task_redone COMMAND ${expect_output}
+         "warning: sweep: redoing p000-f1: .*p000-f1.h5: not a readable HDF5 file" "merge: wrote .*corrupt.h5 \\(1 of 1 tasks"
+         -- ${CLATTER_BIN}/clatter-bank pan -c ${tiny} --results ${bad_results}/corrupt.tasks -o ${bad_results}/corrupt.h5
+         --resume --progress-interval 0)
+set_tests_properties(bad_results_corrupt_task_redone PROPERTIES FIXTURES_REQUIRED bad_results ENVIRONMENT "${CLATTER_MPI_ENV}"
+                                                     LABELS unit)
