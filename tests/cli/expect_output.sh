@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Usage: expect_output.sh REGEX... -- COMMAND...: COMMAND exits 0 and every extended REGEX matches
-# some line of its stdout. (What must not appear is the CTest's FAIL_REGULAR_EXPRESSION.)
+# some line of its output (stdout and stderr: the logs are on stderr). (What must not appear is the CTest's FAIL_REGULAR_EXPRESSION.)
 set -u
 patterns=()
 while [[ $# -gt 0 && $1 != -- ]]; do patterns+=("$1"); shift; done
 [[ $# -gt 1 ]] || { echo "usage: expect_output.sh REGEX... -- COMMAND..."; exit 2; }
 shift
-out=$("$@")
+out=$("$@" 2>&1)
 rc=$?
 echo "$out"
 [[ $rc -eq 0 ]] || { echo "FAIL: exit code $rc"; exit 1; }

@@ -142,5 +142,14 @@ echo "(e) foreign task file refused:      $(grep error logs/e5.log | cut -c1-120
 "$bank" merge --results partial -o e.h5 --force > logs/e6.log 2>&1
 [[ $? -eq 4 ]] && grep -q "replacing e.h5.*(--force)" logs/e6.log || fail "(e) --force did not replace"
 [[ $(sum e.h5) != "$ref" ]] || fail "(e) --force left the bank as it was"
+echo notes > g.h5
+pan -o g.h5 > logs/e7.log 2>&1
+code=$?
+[[ $code -eq 2 ]] && grep -q "g.h5: holds no bank of a sweep" logs/e7.log && [[ $(cat g.h5) == notes ]] ||
+  fail "(e) a run onto a file that is no bank: exit $code ($(tail -1 logs/e7.log))"
+CLATTER_LOCK_STALE_S=abc pan -o e8.h5 > logs/e8.log 2>&1
+code=$?
+[[ $code -eq 2 ]] && grep -q "CLATTER_LOCK_STALE_S='abc': expected a number of seconds > 0" logs/e8.log ||
+  fail "(e) bad CLATTER_LOCK_STALE_S: exit $code ($(tail -1 logs/e8.log))"
 [[ -n $(find . -name '*.lock*' -o -name '.*.tmp-*' -o -name '.*.probe-*') ]] && fail "locks or temporaries left behind"
 echo "every lock check passed"

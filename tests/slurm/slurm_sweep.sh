@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The sweep on a real Slurm (private, single node, started and stopped here): the sbatch script
 # that `clatter-bank plan --sbatch` writes, and a job array + merge job (--dependency=afterok),
-# must give banks whose content hash equals a direct `mpiexec -n 2` run's.
+# must give banks whose content hash equals a direct `mpiexec -n 2` run's; and of two jobs
+# submitted on one output, exactly one writes it.
 # Usage: slurm_sweep.sh CLATTER_BANK CONFIG SCRATCH MPIEXEC...
 set -uo pipefail
 bank=$1 config=$2 scratch=$3
@@ -89,6 +90,38 @@ grep -q "already done" clatter-pan-"${jid%%;*}".out || fail "the requeued job di
 grep "interrupted by signal\|already done" clatter-pan-"${jid%%;*}".out | sed 's/^/  /'
 echo "SIGTERM, requeue, resume:   $(sum requeue.h5) (direct: $(sum requeue-direct.h5))"
 [[ $(sum requeue.h5) == "$(sum requeue-direct.h5)" ]] || fail "the requeued bank differs from the direct run"
+
+# Two jobs submitted on one output (a double submission): 1 rank each, so both fit the node at
+# once. The first job's rank is stopped once it holds the lock, so the second surely meets a live
+# holder; it must exit 2 naming it and compute nothing, and the first then finishes the bank.
+"$bank" plan -c requeue.sbatch.toml --ranks 1 --cores-per-node "$(getconf _NPROCESSORS_ONLN)" -o twice.h5 \
+  --sbatch twice.sbatch > plan-twice.log 2>&1 || fail "plan: $(cat plan-twice.log)"
+jid1=$(sbatch --parsable twice.sbatch) || fail "sbatch twice.sbatch (first)"
+for _ in $(seq 1200); do
+  [[ -e twice.h5.tasks.lock ]] && break
+  sleep 0.05
+done
+holder=$(sed -n 's/^pid=//p' twice.h5.tasks.lock)
+[[ -n $holder ]] || fail "the first job took no lock"
+kill -STOP "$holder"
+jid2=$(sbatch --parsable twice.sbatch) || fail "sbatch twice.sbatch (second)"
+for _ in $(seq 600); do
+  squeue -h -j "$jid2" 2>/dev/null | grep -q . || break
+  sleep 0.5
+done
+kill -CONT "$holder"
+for _ in $(seq 600); do
+  squeue -h -j "$jid1" 2>/dev/null | grep -q . || break
+  sleep 0.5
+done
+second=clatter-pan-$jid2.out
+grep -q "locked by host $(hostname), PID $holder, since" "$second" || fail "the second job did not name the holder"
+grep -q "solve:" "$second" && fail "the second job computed while the first held the output"
+exit2=$(scontrol show job "$jid2" 2>/dev/null | grep -o 'ExitCode=[0-9]*' | head -1)
+[[ -z $exit2 || $exit2 == ExitCode=2 ]] || fail "the second job: $exit2, expected 2"
+[[ -f twice.h5 ]] || fail "the first job wrote no bank"
+echo "two jobs on one output:     $(sum twice.h5) (second job ${exit2:-ExitCode=?}: $(grep -o 'locked by host.*since [0-9TZ:-]*' "$second"))"
+[[ $(sum twice.h5) == "$(sum requeue-direct.h5)" ]] || fail "the bank of the two jobs differs from the direct run"
 
 ref=$(sum direct.h5)
 [[ $(sum one.h5) == "$ref" && $(sum array.h5) == "$ref" ]] || fail "a Slurm bank differs from the direct run"
