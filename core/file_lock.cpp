@@ -5,7 +5,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
@@ -21,6 +23,8 @@ namespace {
 
 constexpr const char* kLockMagic = "clatter-lock 1";
 constexpr double kGuardStaleS = 30;  // a breaker holds its guard for milliseconds
+// Taking or judging a lock while others break it and take it in turn ends within this.
+constexpr auto kContentionLimit = std::chrono::seconds(30);
 
 std::optional<std::string> read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -177,8 +181,12 @@ Verdict judge(const std::string& path, const std::string& text, const LockTiming
 // temporary's link count.
 bool try_link(const std::string& temp, const std::string& path) {
   if (::link(temp.c_str(), path.c_str()) == 0) return true;
+  const int error = errno;
   struct stat st {};
-  return ::stat(temp.c_str(), &st) == 0 && st.st_nlink == 2;
+  if (::stat(temp.c_str(), &st) == 0 && st.st_nlink == 2) return true;
+  if (error != EEXIST)
+    throw std::runtime_error(fmt::format("{}: cannot take the lock: link(2): {}", path, std::strerror(error)));
+  return false;
 }
 
 // Removes the stale lock `path` if it still says `seen`. Breakers take a guard
@@ -214,7 +222,7 @@ LockHeld::LockHeld(const std::string& path, const LockOwner& owner, const std::s
 
 std::optional<LockOwner> FileLock::live_owner(const std::string& path, const LockTiming& timing,
                                               const LockNotice& notice) {
-  for (int attempt = 0; attempt < 5; ++attempt) {
+  for (const auto until = std::chrono::steady_clock::now() + kContentionLimit; std::chrono::steady_clock::now() < until;) {
     const auto text = read_text(path);
     if (!text) return std::nullopt;
     const Verdict v = judge(path, *text, timing);
@@ -223,7 +231,7 @@ std::optional<LockOwner> FileLock::live_owner(const std::string& path, const Loc
     if (notice) notice(fmt::format("{}: breaking the stale lock of {}: {}", path, v.owner.describe(), v.why));
     break_stale(path, *text);
   }
-  throw std::runtime_error(path + ": the lock changed hands five times while being checked");
+  throw std::runtime_error(path + ": the lock kept changing hands for 30 s while being checked");
 }
 
 FileLock::FileLock(const std::string& path, const std::string& command, const LockTiming& timing,
@@ -238,24 +246,25 @@ FileLock::FileLock(const std::string& path, const std::string& command, const Lo
     out.flush();
     if (!out) throw std::runtime_error(fmt::format("{}: cannot write the lock's temporary {}", path, temp));
   }
+  const struct RemoveTemp {
+    const std::string& path;
+    ~RemoveTemp() { ::unlink(path.c_str()); }
+  } remove_temp{temp};
   bool taken = false;
-  for (int attempt = 0; attempt < 5 && !taken; ++attempt) {
+  for (const auto until = std::chrono::steady_clock::now() + kContentionLimit;
+       !taken && std::chrono::steady_clock::now() < until;) {
     taken = try_link(temp, path);
     if (taken) break;
     const auto text = read_text(path);
     if (!text) continue;  // released in between
     const Verdict v = judge(path, *text, timing);
-    if (v.state == Verdict::live) {
-      ::unlink(temp.c_str());
-      throw LockHeld(path, v.owner, v.why);
-    }
+    if (v.state == Verdict::live) throw LockHeld(path, v.owner, v.why);
     if (v.state == Verdict::stale) {
       if (notice) notice(fmt::format("{}: breaking the stale lock of {}: {}", path, v.owner.describe(), v.why));
       break_stale(path, *text);
     }
   }
-  ::unlink(temp.c_str());
-  if (!taken) throw std::runtime_error(path + ": cannot take the lock (it changed hands five times)");
+  if (!taken) throw std::runtime_error(path + ": cannot take the lock: it kept changing hands for 30 s");
   inode_ = inode_of(path);
   register_temporary(path);  // removed on an abort path that skips destructors
   beat_ = std::thread([this] { heartbeat(); });
