@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The sweep engine's acceptance (docs/cluster.md, "Sweeps"): the bank's content hash is identical
 # for (a) 1 rank, (b) 2 ranks, (c) 2 ranks as one group of 2, (d) 2 ranks stopped by SIGTERM and
-# resumed; the interrupted run leaves only complete task files; a task that fails (an I/O error:
-# its result path is taken by a folder) is recorded, the sweep goes on, the exit code is 4, `info`
+# resumed; the interrupted run leaves only complete task files and releases its locks; a task that
+# fails (an I/O error: its result path is taken by a folder) is recorded, the sweep goes on, the
+# exit code is 4, `info`
 # lists it, and --resume retries it into the same bank.
 # Usage: sweep_checks.sh CLATTER_BANK CONFIG SCRATCH MPIEXEC...
 set -uo pipefail
@@ -58,6 +59,7 @@ code=$?
 [[ $code -eq 3 ]] || fail "interrupted sweep: exit $code, expected 3 ($(tail -5 d1.log))"
 grep -q "resume with:" d1.log || fail "no resume hint in the log"
 [[ -e d.h5 ]] && fail "an interrupted sweep wrote the bank"
+[[ -n $(compgen -G 'd.h5*.lock*') ]] && fail "the interrupted sweep left its locks: $(compgen -G 'd.h5*.lock*')"
 stray=$(find . -name '.*tmp*')
 [[ -z "$stray" ]] || fail "stray temporaries: $stray"
 kept=$(find d.h5.tasks -name 'p*.h5' | wc -l)
