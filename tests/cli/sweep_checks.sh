@@ -3,8 +3,7 @@
 # for (a) 1 rank, (b) 2 ranks, (c) 2 ranks as one group of 2, (d) 2 ranks stopped by SIGTERM and
 # resumed; the interrupted run leaves only complete task files and releases its locks; a task that
 # fails (an I/O error: its result path is taken by a folder) is recorded, the sweep goes on, the
-# exit code is 4, `info`
-# lists it, and --resume retries it into the same bank.
+# exit code is 4, `info` lists it, and --resume retries it into the same bank.
 # Usage: sweep_checks.sh CLATTER_BANK CONFIG SCRATCH MPIEXEC...
 set -uo pipefail
 bank=$1 config=$2 scratch=$3
