@@ -15,6 +15,9 @@ namespace clatter::jobs {
 
 namespace pan = kernels::pan;
 
+// Far beyond a useful bank (the paper's grid has 66 proxies), far below exhausting memory.
+constexpr double kMaxProxies = 1e5;
+
 const io::Schema& pan_schema() {
   static const io::Schema schema = [] {
     io::Schema s{"clatter-bank pan: the PAN proxy bank (FDTD solves, wavelet fit, compression)", medium_and_pulse_keys()};
@@ -78,6 +81,12 @@ std::vector<std::array<double, 2>> proxy_list(const PanParams& in) {
   if (!in.proxies_list_m.empty()) return in.proxies_list_m;
   std::vector<std::array<double, 2>> out;
   const double lo = in.proxies_grid_min_m, step = in.proxies_grid_step_m;
+  // Refused before building: a fine step would otherwise exhaust memory (found by fuzz_config).
+  const double n_values = std::floor((in.proxies_a_m * (1 + 1e-12) - lo) / step) + 1;
+  if (n_values * (n_values + 1) / 2 > kMaxProxies)
+    throw InputError(fmt::format("config: key 'proxies.grid_step_m' has {}: the grid from proxies.grid_min_m = {} to "
+                                 "proxies.a_m = {} would hold {:.3g} proxies, more than {}",
+                                 step, lo, in.proxies_a_m, n_values * (n_values + 1) / 2, kMaxProxies));
   std::vector<double> values;
   for (int i = 0; lo + i * step <= in.proxies_a_m * (1 + 1e-12); ++i) values.push_back(lo + i * step);
   for (std::size_t b = 0; b < values.size(); ++b)
