@@ -123,8 +123,12 @@ double tricky_value(FuzzedDataProvider& in) {
 void reshape(H5Item& item, FuzzedDataProvider& in) {
   const int rank = in.ConsumeIntegralInRange(0, item.attribute.empty() ? 4 : 1);
   item.dims.clear();
-  for (int r = 0; r < rank; ++r) item.dims.push_back(in.ConsumeIntegralInRange<hsize_t>(0, 300));
-  if (count(item.dims) > 4096) item.dims.back() = 1;  // keeps each build fast
+  // At most 4096 elements, so that each build stays fast.
+  for (hsize_t r = 0, n = 1; r < static_cast<hsize_t>(rank); ++r) {
+    const hsize_t d = std::min(in.ConsumeIntegralInRange<hsize_t>(0, 300), n > 0 ? 4096 / n : 300);
+    item.dims.push_back(d);
+    n *= d;
+  }
   const std::size_t n = count(item.dims);
   auto cycle = [n](auto& v, auto fill) {
     const std::size_t old = v.size();
