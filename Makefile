@@ -1,9 +1,10 @@
 # The two commands a new user runs: `make demo` and `make test`. Both install missing Debian
 # packages (cluster/install-deps.sh), configure with a CMake preset and build.
 #   make demo                 a 3-proxy PAN bank on 2 ranks (out/demo/bank.h5) and its summary
-#   make test                 every test (ctest), in build/$(PRESET)
+#   make test                 every test (ctest), in build/$(PRESET), then `make fuzz`
+#   make fuzz                 the libFuzzer harnesses of the readers, 30 s each (preset fuzz, clang-14)
 #   make bench                Google Benchmark suite, JSON in out/bench/
-#   make PRESET=asan test     the same with ASan+UBSan (presets: release debug asan ci)
+#   make PRESET=asan test     the same with ASan+UBSan (presets: release debug asan ci; fuzz: make fuzz)
 PRESET ?= release
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc)
@@ -15,7 +16,9 @@ MAKEFLAGS += --no-print-directory
 # The python3 with h5py that CMake chose (read when a recipe runs, i.e. after configuring).
 PYTHON = $(shell sed -n 's/^CLATTER_PYTHON:FILEPATH=//p' $(BUILD)/CMakeCache.txt)
 
-.PHONY: all deps build demo test bench clean
+FUZZ_BUILD := build/fuzz
+
+.PHONY: all deps build demo test fuzz bench clean
 all: build
 
 deps:
@@ -34,6 +37,15 @@ demo: build
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300
+	@$(MAKE) fuzz
+
+$(FUZZ_BUILD)/CMakeCache.txt: | deps
+	cmake --preset fuzz
+
+# Only the harnesses and what they link (target fuzzers); each fuzzes its corpus for 30 s.
+fuzz: deps $(FUZZ_BUILD)/CMakeCache.txt
+	cmake --build $(FUZZ_BUILD) --target fuzzers -j$(JOBS)
+	ctest --test-dir $(FUZZ_BUILD) -L fuzz --output-on-failure -j$(JOBS)
 
 bench: build
 	mkdir -p out/bench

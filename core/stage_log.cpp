@@ -68,7 +68,8 @@ std::vector<StageStats> merge_stage_entries(const std::vector<std::vector<StageL
   for (auto& [path, s] : stats) {
     std::size_t seen = 0;
     for (const auto& entries : per_rank)
-      seen += std::count_if(entries.begin(), entries.end(), [&](const auto& e) { return e.path == path; }) > 0;
+      // An init-capture: clang 14 (the fuzz preset) cannot capture a structured binding.
+      seen += std::count_if(entries.begin(), entries.end(), [&name = path](const auto& e) { return e.path == name; }) > 0;
     if (seen < per_rank.size()) s.min_s = 0;
   }
   std::vector<StageStats> rows;

@@ -223,12 +223,41 @@ void Config::assign(const Key& key, Value value, const std::string& source, cons
   values_[key.name] = std::move(value);
 }
 
+namespace {
+
+// The line of the first byte sequence that is not UTF-8 (overlong forms and surrogates included),
+// or 0. TOML documents must be UTF-8, and toml11 3.7 reads out of bounds reporting some of them
+// (an invalid byte in a 'literal string'; found by tests/fuzz/fuzz_config).
+std::size_t first_non_utf8_line(std::string_view text) {
+  std::size_t line = 1;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto b = static_cast<unsigned char>(text[i]);
+    if (b == '\n') ++line;
+    const std::size_t n = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xe ? 3 : (b >> 3) == 0x1e ? 4 : 0;
+    if (n == 0 || i + n > text.size()) return line;
+    std::uint32_t cp = n == 1 ? b : b & (0x7f >> n);
+    for (std::size_t k = 1; k < n; ++k) {
+      const auto c = static_cast<unsigned char>(text[i + k]);
+      if ((c >> 6) != 0x2) return line;
+      cp = (cp << 6) | (c & 0x3f);
+    }
+    const std::uint32_t least[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (cp < least[n] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return line;
+    i += n;
+  }
+  return 0;
+}
+
+}  // namespace
+
 void Config::merge_toml(std::string_view toml_text, const std::string& source) {
+  if (const std::size_t line = first_non_utf8_line(toml_text))
+    throw InputError(source + ":" + std::to_string(line) + ": malformed TOML: not UTF-8 text");
   toml::value root;
   try {
     std::istringstream in{std::string(toml_text)};
     root = toml::parse(in, source);
-  } catch (const toml::syntax_error& e) {
+  } catch (const toml::exception& e) {  // syntax_error, and internal_error for some malformed strings
     // toml11's message is a multi-line picture; keep its first line and the line number.
     std::string what = e.what();
     std::string first = what.substr(0, what.find('\n'));

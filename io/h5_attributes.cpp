@@ -94,9 +94,11 @@ void write_attribute(File& file, const std::string& object, const std::string& n
 std::string read_string_attribute(const File& file, const std::string& object, const std::string& name) {
   auto attr = open_attribute(file, object, name);
   Handle type(H5Aget_type(attr.get()), H5Tclose);
-  if (H5Tget_class(type.get()) != H5T_STRING)
+  Handle space(H5Aget_space(attr.get()), H5Sclose);
+  // An array of strings would be read whole into room for one.
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Sget_simple_extent_npoints(space.get()) != 1)
     throw InputError(file.path() + ": attribute '" + name + "' of '" + object + "': expected a string, found " +
-                     type_name(type.get()));
+                     type_name(type.get()) + " x " + std::to_string(H5Sget_simple_extent_npoints(space.get())));
   if (H5Tis_variable_str(type.get()) > 0) {
     Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(mem.get(), H5T_VARIABLE);

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <map>
 #include <optional>
 #include <set>
@@ -163,7 +163,7 @@ Scene read_setting(const json& root, const std::string& path) {
 json parse(const std::string& path) {
   try {
     return json::parse(read_text_file(path, "the scene file"));
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // out_of_range too: a number beyond double's range
     throw InputError(fmt::format("{}: not valid JSON: {}", path, e.what()));
   }
 }
@@ -244,7 +244,8 @@ void read_impulse_events(const std::string& impulse_path, Scene& scene) {
     };
     auto next_id = [&](const char* what) {
       const double v = next(what);
-      if (v != std::floor(v) || v < 1) bad(e.where, fmt::format("{} {}: expected an object id >= 1", what, v));
+      if (v != std::floor(v) || v < 1 || v > std::numeric_limits<int>::max())
+        bad(e.where, fmt::format("{} {}: expected an object id in [1, {}]", what, v, std::numeric_limits<int>::max()));
       return static_cast<int>(v);
     };
     // One body: contact point p in the rest pose, centre x at time t, inverse rotation q (w x y z,

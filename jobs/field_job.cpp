@@ -12,6 +12,7 @@
 #include "io/h5_parallel.hpp"
 #include "io/provenance.hpp"
 #include "jobs/command.hpp"
+#include "jobs/medium_keys.hpp"
 #include "jobs/run_options.hpp"
 #include "kernels/pulse.hpp"
 #include "mpi/cart.hpp"

@@ -52,14 +52,6 @@ std::optional<io::Config> job_config(MPI_Comm comm, const io::Schema& schema, co
   return std::nullopt;
 }
 
-std::vector<io::Key> medium_and_pulse_keys() {
-  return {
-      {"medium.c_m_s", 343.2, "speed of sound [m/s]", {0.0, 1e5, true}},
-      {"medium.rho_kg_m3", 1.2041, "density of the medium [kg/m^3]", {0.0, 1e5, true}},
-      {"pulse.h_s", 1e-4, "width h of the acceleration pulse psi(t; h), support [-2h, 2h] [s]", {0.0, 1.0, true}},
-  };
-}
-
 std::string clock_text(double seconds) {
   const long s = static_cast<long>(std::ceil(std::max(seconds, 0.0)));
   return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);

@@ -39,9 +39,6 @@ io::Config load_config(MPI_Comm comm, const io::Schema& schema, const JobOptions
 // The same, or nullopt when --print-config asked only to print it (rank 0 prints).
 std::optional<io::Config> job_config(MPI_Comm comm, const io::Schema& schema, const JobOptions& options);
 
-// Schema keys every acoustic job shares: medium.c_m_s, medium.rho_kg_m3, pulse.h_s.
-std::vector<io::Key> medium_and_pulse_keys();
-
 // The command line as one string, for provenance.
 std::string command_line(int argc, char** argv);
 

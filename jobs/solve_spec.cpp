@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
-#include "jobs/run_options.hpp"
+#include "jobs/medium_keys.hpp"
 #include "kernels/fdtd/listeners.hpp"
 
 namespace clatter::jobs {

@@ -77,6 +77,9 @@ if [[ -n $links_file ]]; then
   forbid_link clatter_synth "$mpi" "must stay serial"
   forbid_link clatter-synth "$mpi" "must stay serial"
   forbid_link clatter_jobs "clatter_synth" "must not depend on the synthesizer"
+  # The specs and the config are checked by the fuzz harnesses, which link neither MPI nor HDF5.
+  forbid_link clatter_specs "$mpi|$hdf5|CLI11::CLI11|spdlog::spdlog" "must stay free of MPI, HDF5 and the command line"
+  forbid_link clatter_config "$mpi|$hdf5|clatter_kernels" "must stay free of MPI, HDF5 and physics"
   # Two builds of the same sources (io/CMakeLists.txt, synth/CMakeLists.txt) in one binary
   # would be one definition each of two different things.
   for t in "${!direct[@]}"; do

@@ -74,6 +74,17 @@ TEST(Config, MalformedTomlNamesFileAndLine) {
   expect_contains(m, {"bad2.toml:1", "malformed TOML"});
 }
 
+// TOML is UTF-8; toml11 reads out of bounds on some other bytes, so they are refused first
+// (tests/fuzz/corpus/fuzz_config/regression-non-utf8-literal-string.toml).
+TEST(Config, TextThatIsNotUtf8IsRefusedWithItsLine) {
+  Config c(schema());
+  expect_contains(error_of([&] { c.merge_toml("[run]\nlabel = 'a\xaf'\n", "bytes.toml"); }),
+                  {"bytes.toml:2", "not UTF-8"});
+  expect_contains(error_of([&] { c.merge_toml("[run] # \xc0\xaf overlong\n", "overlong.toml"); }), {"overlong.toml:1"});
+  c.merge_toml("[run] # caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80\nlabel = 'caf\xc3\xa9'\n", "utf8.toml");
+  EXPECT_EQ(c.string("run.label"), "caf\xc3\xa9");
+}
+
 TEST(Config, UnknownKeySuggestsTheNearestOne) {
   Config c(schema());
   auto m = error_of([&] { c.merge_toml("[grid]\nn_cell = 64\n", "u.toml"); });

@@ -1,0 +1,56 @@
+// The PAN bank reader (io::read_pan_bank), structure-aware (tests/fuzz/h5_mutator.hpp): a valid
+// bank mutated item by item, rebuilt as a well-formed HDF5 file. It must end in InputError (bad
+// content) or std::runtime_error (HDF5 could not read what it holds), and a bank it returns must be
+// one the evaluator can index without checks (kernels/pan/field.hpp).
+#include "core/errors.hpp"
+#include "io/pan_bank.hpp"
+#include "tests/fuzz/bank_template.hpp"
+#include "tests/fuzz/fuzz_input.hpp"
+#include "tests/fuzz/h5_mutator.hpp"
+
+namespace {
+
+using namespace clatter;
+
+const std::vector<fuzz::H5Item>& template_items() {
+  static const std::vector<fuzz::H5Item> items = [] {
+    const std::string path = fuzz::scratch_path("template-bank.h5");
+    io::write_pan_bank(path, fuzz::template_bank(), "fuzz", "", 1);
+    return fuzz::take_apart(path);
+  }();
+  return items;
+}
+
+void check(const model::PanBank& bank) {
+  const auto& h = bank.header;
+  const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms);
+  for (const auto& t : h.triangles)
+    for (int v : t)
+      if (v < 0 || static_cast<std::size_t>(v) >= n_dirs) fuzz::broken("triangle corner out of range");
+  for (const auto& p : bank.proxies) {
+    if (p.delay_steps.size() != n_dirs) fuzz::broken("delay_steps per direction");
+    for (const auto& field : p.fields) {
+      if (!field.empty() && field.size() != n_dirs) fuzz::broken("terms per direction");
+      for (const auto& d : field) {
+        if (d.value.size() != d.index.size() * n_terms) fuzz::broken("values per index");
+        for (std::size_t e = 0; e < d.index.size(); ++e)
+          if (d.index[e] >= h.length || (e > 0 && d.index[e] <= d.index[e - 1])) fuzz::broken("index order/range");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  FuzzedDataProvider input(data, size);
+  std::vector<fuzz::H5Item> items = template_items();
+  fuzz::mutate(items, input);
+  const std::string path = fuzz::scratch_path("bank.h5");
+  fuzz::build(items, path);
+  try {
+    check(io::read_pan_bank(path));
+  } catch (const std::runtime_error&) {  // InputError, or an HDF5 read failure
+  }
+  return 0;
+}
