@@ -8,10 +8,12 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "core/stage_log.hpp"
 #include "petsc/eigen.hpp"
+#include "petsc/error.hpp"
 
 namespace {
 using namespace clatter::petsc;
@@ -161,6 +163,23 @@ TEST(PetscEigen, CountMismatchNamesBothCounts) {
     EXPECT_EQ(e.expected(), 7);
     EXPECT_NE(std::string(e.what()).find("found 6 eigenvalues in [1, 2]"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("counts 7"), std::string::npos) << e.what();
+  }
+}
+
+// An end exactly on a (double) eigenvalue: K - lambda_hi M is singular up to rounding, and SLEPc
+// may lose count (measured: it reports its own mismatch on one rank and not on two). Either way no
+// solve returns a count the inertia contradicts.
+TEST(PetscEigen, EndOnAnEigenvalueNeverGivesASilentlyWrongCount) {
+  const int n = 60;
+  Problem p = laplacian(MPI_COMM_WORLD, n, true, 2);
+  try {
+    const EigenSolution s = solve_interval(p.K, p.M, {gap_after(2, n), lambda_exact(10, n)});
+    EXPECT_EQ(static_cast<PetscInt>(s.lambdas.size()), s.below_hi - s.below_lo);
+  } catch (const CountMismatch& e) {
+    EXPECT_NE(e.found(), e.expected());
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("Mismatch between number of values found and information from inertia"),
+              std::string::npos) << e.what();
   }
 }
 
