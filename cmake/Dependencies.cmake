@@ -1,6 +1,6 @@
 # Every third-party dependency is found here, once, and exposed as an imported target. Only what
-# some target links is found: the modal bank will bring PETSc, SLEPc, CGAL and TetGen back with
-# their first user (cluster/install-deps.sh already installs them).
+# some target links is found: CGAL and TetGen come back with their first user (the modal bank's
+# meshing; cluster/install-deps.sh already installs them).
 # On a cluster, point CMake at module-provided installs with <Pkg>_ROOT or PKG_CONFIG_PATH
 # (see docs/cluster.md).
 
@@ -40,6 +40,11 @@ find_package(spdlog 1.10 REQUIRED)
 find_package(nlohmann_json 3.11 REQUIRED)
 find_package(Threads REQUIRED)  # core/file_lock.cpp: the heartbeat thread of a lock
 pkg_check_modules(sndfile REQUIRED IMPORTED_TARGET sndfile>=1.2)
+# The modal bank's eigen-solves (petsc/). Debian: libpetsc-real3.18-dev, libslepc-real3.18-dev (real
+# double, 32-bit PetscInt, MUMPS). PETSc.pc names no MPI include folder: clatter_petsc links
+# MPI::MPI_CXX itself.
+pkg_check_modules(PETSC REQUIRED IMPORTED_TARGET PETSc>=3.18)
+pkg_check_modules(SLEPC REQUIRED IMPORTED_TARGET SLEPc>=3.18)
 find_package(GTest REQUIRED)
 find_package(benchmark REQUIRED)
 

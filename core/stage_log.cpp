@@ -29,6 +29,13 @@ void StageLog::leave(std::size_t index, double seconds) {
   entries_[index].seconds += seconds;
 }
 
+void StageLog::add(std::string_view name, long long count, double seconds) {
+  const std::size_t index = enter(name);
+  open_.pop_back();
+  entries_[index].count += count;
+  entries_[index].seconds += seconds;
+}
+
 StageLog& stage_log() {
   static StageLog log;
   return log;

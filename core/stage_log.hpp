@@ -21,6 +21,9 @@ class StageLog {
 
   std::size_t enter(std::string_view name);
   void leave(std::size_t index, double seconds);
+  // A child of the innermost open stage timed by someone else (a library's own event log):
+  // adds `count` calls and `seconds` to it without opening it.
+  void add(std::string_view name, long long count, double seconds);
   const std::vector<Entry>& entries() const { return entries_; }
   bool empty() const { return entries_.empty(); }
 

@@ -4,7 +4,8 @@
 # target links (directly or through the libraries it links):
 #   kernels/ uses no MPI, HDF5, config or logging code; mpi/ knows no physics, HDF5 or config;
 #   core/ depends on nothing of Clatter's; io/ knows no physics and no MPI layer, and its serial
-#   build no MPI at all; synth/ is serial (no MPI); model/ is plain data (std only); no binary links both builds of io.
+#   build no MPI at all; synth/ is serial (no MPI); model/ is plain data (std only); no binary links both builds of io;
+#   petsc/ knows no physics, HDF5 or config, and only jobs/ (and tests/) use it or PETSc.
 # Usage: check_layers.sh [BUILD/link_libraries.txt]
 set -u
 links_file=${1:-}
@@ -15,7 +16,12 @@ forbid() {  # forbid DIR REGEX WHY
   hits=$(grep -nE "^\s*#\s*include\s*[<\"]($2)" -r "$1" --include='*.hpp' --include='*.cpp' --include='*.h' || true)
   if [[ -n $hits ]]; then echo "FAIL: $1 $3:"; echo "$hits"; status=1; fi
 }
-forbid kernels 'mpi\.h|hdf5\.h|H5|toml|io/|mpi/|jobs/|spdlog|CLI/' "must not use MPI, HDF5, config or logging code"
+forbid kernels 'mpi\.h|hdf5\.h|H5|toml|io/|mpi/|jobs/|spdlog|CLI/|petsc|slepc' "must not use MPI, PETSc, HDF5, config or logging code"
+forbid petsc 'hdf5\.h|H5|toml|io/|kernels/|jobs/|synth/|model/' "must not know physics, HDF5 or config"
+# PETSc and SLEPc (and petsc/) belong to petsc/ and the jobs that use it.
+for dir in core model mpi io kernels synth; do
+  forbid $dir 'petsc|slepc' "must not use PETSc (only petsc/ and jobs/ may)"
+done
 forbid mpi 'hdf5\.h|H5|toml|io/|kernels/|jobs/' "must not know physics, HDF5 or config"
 forbid core 'mpi\.h|hdf5\.h|toml|io/|mpi/|kernels/|jobs/|model/|synth/|spdlog' "must depend on nothing of Clatter's"
 forbid io 'kernels/|jobs/|mpi/' "must not depend on physics or the MPI layer"
@@ -70,6 +76,11 @@ if [[ -n $links_file ]]; then
   forbid_link clatter_kernels "$mpi|$hdf5|toml11::toml11|spdlog::spdlog|CLI11::CLI11" \
     "must not use MPI, HDF5, config or logging code"
   forbid_link clatter_mpi "$hdf5|toml11::toml11|clatter_kernels|clatter_jobs" "must not know physics, HDF5 or config"
+  forbid_link clatter_petsc "$hdf5|toml11::toml11|clatter_kernels|clatter_jobs|clatter_synth" "must not know physics, HDF5 or config"
+  petsc='clatter_petsc|PkgConfig::PETSC|PkgConfig::SLEPC|.*/lib(petsc|slepc)[^/]*'
+  for t in clatter_core clatter_mpi clatter_io clatter_io_mpi clatter_kernels clatter_synth clatter-synth; do
+    forbid_link $t "$petsc" "must not link PETSc (only petsc/ and jobs/ may)"
+  done
   for io in clatter_io clatter_io_mpi; do
     forbid_link $io "clatter_kernels|clatter_jobs|clatter_mpi|clatter_synth" "must not depend on physics or the MPI layer"
   done

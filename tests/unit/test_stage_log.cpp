@@ -24,6 +24,22 @@ TEST(StageLog, NestsAndCounts) {
   EXPECT_GE(e[0].seconds, e[1].seconds + e[2].seconds);  // a parent includes its children
 }
 
+TEST(StageLog, AddRecordsATimedChildWithoutOpeningIt) {
+  StageLog log;
+  {
+    Stage outer("solve", log);
+    log.add("factor", 3, 0.25);
+    log.add("factor", 2, 0.5);
+    Stage inner("step", log);  // a sibling of "factor": add left nothing open
+  }
+  const auto& e = log.entries();
+  ASSERT_EQ(e.size(), 3u);
+  EXPECT_EQ(e[1].path, "solve/factor");
+  EXPECT_EQ(e[1].count, 5);
+  EXPECT_DOUBLE_EQ(e[1].seconds, 0.75);
+  EXPECT_EQ(e[2].path, "solve/step");
+}
+
 TEST(StageLog, RejectsBadNamesAndOutOfOrderClose) {
   StageLog log;
   EXPECT_THROW(log.enter("a/b"), std::invalid_argument);
