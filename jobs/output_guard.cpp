@@ -70,10 +70,10 @@ SweepLocks::SweepLocks(MPI_Comm world, const std::string& results_dir, int slice
       const std::string name = entry.path().filename().string();
       const int n = slice_count_of(name, base);
       if (name == own || n == 0 || n == slice_count) continue;
-      if (auto owner = FileLock::live_owner(entry.path().string(), timing, log_notice))
-        throw LockHeld(
-            entry.path().string(), *owner,
-            fmt::format("which runs {} of {}", n == 1 ? "the whole sweep or a merge" : "slices", results_dir));
+      const std::string path = beside(results, name);
+      if (auto owner = FileLock::live_owner(path, timing, log_notice))
+        throw LockHeld(path, *owner,
+                       fmt::format("which runs {} of {}", n == 1 ? "the whole sweep or a merge" : "slices", results_dir));
     }
     if (!out.empty()) {
       fs::create_directories(folder_of(out));
