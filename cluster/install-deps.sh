@@ -12,8 +12,8 @@ packages=(
   # HDF5 twice: parallel (MPI-IO) for clatter-bank, serial for clatter-synth (no MPI runtime)
   libhdf5-openmpi-dev libhdf5-dev
   libeigen3-dev libgsl-dev
-  # PETSc/SLEPc (real, with MUMPS) for petsc/; CGAL and TetGen not used by the build yet (the modal
-  # bank's meshing)
+  # PETSc/SLEPc (real, with MUMPS) for petsc/; TetGen for kernels/fem/ellipsoid_mesh.cpp; CGAL
+  # not used by the build yet
   libpetsc-real3.18-dev libslepc-real3.18-dev libcgal-dev libtet1.5-dev
   # small libraries the code uses
   libtoml11-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libsndfile1-dev

@@ -1,6 +1,6 @@
 # Every third-party dependency is found here, once, and exposed as an imported target. Only what
-# some target links is found: CGAL and TetGen come back with their first user (the modal bank's
-# meshing; cluster/install-deps.sh already installs them).
+# some target links is found: CGAL comes back with its first user (cluster/install-deps.sh already
+# installs it).
 # On a cluster, point CMake at module-provided installs with <Pkg>_ROOT or PKG_CONFIG_PATH
 # (see docs/cluster.md).
 
@@ -45,6 +45,15 @@ pkg_check_modules(sndfile REQUIRED IMPORTED_TARGET sndfile>=1.2)
 # MPI::MPI_CXX itself.
 pkg_check_modules(PETSC REQUIRED IMPORTED_TARGET PETSc>=3.18)
 pkg_check_modules(SLEPC REQUIRED IMPORTED_TARGET SLEPc>=3.18)
+# TetGen 1.5 (Debian: libtet1.5-dev) for kernels/fem/ellipsoid_mesh.cpp: no CMake config or .pc,
+# so header and library are found by name; TETLIBRARY makes TetGen throw instead of exit().
+# SYSTEM: its header is not warning-free under the project's flags.
+find_path(TETGEN_INCLUDE_DIR tetgen.h REQUIRED)
+find_library(TETGEN_LIBRARY NAMES tet tetgen REQUIRED)
+add_library(clatter_tetgen INTERFACE)
+target_include_directories(clatter_tetgen SYSTEM INTERFACE ${TETGEN_INCLUDE_DIR})
+target_compile_definitions(clatter_tetgen INTERFACE TETLIBRARY)
+target_link_libraries(clatter_tetgen INTERFACE ${TETGEN_LIBRARY})
 find_package(GTest REQUIRED)
 find_package(benchmark REQUIRED)
 

@@ -1,0 +1,212 @@
+// TetGen's part of the ellipsoid mesher (the only file that sees TetGen), the mid-nodes and the
+// quality statistics.
+//
+// TetGen switches, "pYQq<r>/<d>a<v>":
+//   p   the input is a piecewise linear complex (our closed surface triangulation);
+//   Y   keep that surface as it is: no Steiner point on the boundary, so every boundary vertex is
+//       one of ours, on the ellipsoid, and the boundary mid-nodes can be put on the surface;
+//   Q   quiet: nothing on stdout (a library prints no progress into a bank job's log);
+//   q   quality refinement: radius-edge ratio <= r and smallest dihedral angle >= d degrees;
+//   a   volume bound v = h^3 / (6 sqrt 2), the regular tetrahedron of edge h, so the interior is as
+//       fine as the surface.
+// No -o2: TetGen's second-order nodes sit at straight midpoints; the curved ones are made here.
+#include "kernels/fem/ellipsoid_mesh.hpp"
+
+#include <tetgen.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <unordered_map>
+#include <vector>
+
+#include "kernels/fem/mesh_quality.hpp"
+
+namespace clatter::kernels::fem {
+namespace {
+
+using P3 = std::array<double, 3>;
+
+// Tetrahedra as vertex quadruples over `points` (TetGen's output; the input points come first).
+struct LinearMesh {
+  std::vector<P3> points;
+  std::vector<std::array<int, 4>> tets;
+};
+
+// One point under each surface vertex, half its mean edge length deep along the inward normal, skipped where it would come closer than that to one already placed (near a sharp tip).
+// Without them TetGen, which may not split the preserved surface (-Y), leaves "caps": tetrahedra
+// on four surface vertices, only a sagitta thick, which fold once their mid-nodes are curved. A
+// point under a cap lies inside its circumsphere (about the osculating sphere) where the surface's
+// curvature radius exceeds the depth, so Delaunay insertion removes the cap there. Where it does
+// not (h above the curvature radius: the rim of a flat ellipsoid), caps stay and fold when curved,
+// and the mesh is refused (MeshError).
+std::vector<P3> inner_layer(const SurfaceTriangulation& surface, const P3& r) {
+  std::vector<double> edge_sum(surface.vertices_m.size(), 0);
+  std::vector<int> edge_count(surface.vertices_m.size(), 0);
+  for (const auto& f : surface.faces)
+    for (int k = 0; k < 3; ++k) {
+      const P3 &a = surface.vertices_m[f[k]], &b = surface.vertices_m[f[(k + 1) % 3]];
+      const double len = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+      edge_sum[f[k]] += len;
+      ++edge_count[f[k]];
+    }
+  std::vector<P3> layer;
+  std::vector<double> spacing;
+  for (std::size_t v = 0; v < surface.vertices_m.size(); ++v) {
+    const P3& x = surface.vertices_m[v];
+    const double depth = 0.5 * edge_sum[v] / edge_count[v];
+    const P3 n{x[0] / (r[0] * r[0]), x[1] / (r[1] * r[1]), x[2] / (r[2] * r[2])};
+    const double norm = std::hypot(n[0], n[1], n[2]);
+    const P3 p{x[0] - depth * n[0] / norm, x[1] - depth * n[1] / norm, x[2] - depth * n[2] / norm};
+    bool crowded = false;
+    for (std::size_t q = 0; q < layer.size() && !crowded; ++q)
+      crowded = std::hypot(p[0] - layer[q][0], p[1] - layer[q][1], p[2] - layer[q][2]) < std::min(depth, spacing[q]);
+    if (!crowded) {
+      layer.push_back(p);
+      spacing.push_back(depth);
+    }
+  }
+  return layer;
+}
+
+LinearMesh run_tetgen(const SurfaceTriangulation& surface, const EllipsoidMeshSettings& s, double h) {
+  tetgenio in, out;
+  in.firstnumber = 0;
+  std::vector<P3> points = surface.vertices_m;
+  for (const P3& p : inner_layer(surface, s.semi_axes_m)) points.push_back(p);
+  in.numberofpoints = static_cast<int>(points.size());
+  in.pointlist = new REAL[3 * points.size()];
+  for (std::size_t v = 0; v < points.size(); ++v)
+    for (int k = 0; k < 3; ++k) in.pointlist[3 * v + k] = points[v][k];
+  in.numberoffacets = static_cast<int>(surface.faces.size());
+  in.facetlist = new tetgenio::facet[surface.faces.size()];
+  for (std::size_t f = 0; f < surface.faces.size(); ++f) {
+    tetgenio::facet& facet = in.facetlist[f];
+    tetgenio::init(&facet);
+    facet.numberofpolygons = 1;
+    facet.polygonlist = new tetgenio::polygon[1];
+    tetgenio::init(&facet.polygonlist[0]);
+    facet.polygonlist[0].numberofvertices = 3;
+    facet.polygonlist[0].vertexlist = new int[3]{surface.faces[f][0], surface.faces[f][1], surface.faces[f][2]};
+  }
+  char switches[128];
+  std::snprintf(switches, sizeof switches, "pYQq%.6g/%.6ga%.9g", s.max_radius_edge, s.min_dihedral_deg,
+                h * h * h / (6 * std::numbers::sqrt2));
+  tetgenbehavior behavior;
+  if (!behavior.parse_commandline(switches)) throw MeshError(std::string("TetGen refused the switches ") + switches);
+  try {
+    tetrahedralize(&behavior, &in, &out);
+  } catch (int code) {  // TETLIBRARY: terminatetetgen throws its exit code
+    throw MeshError("TetGen failed (code " + std::to_string(code) + ") with switches " + switches);
+  }
+  if (out.numberofcorners != 4 || out.numberoftetrahedra <= 0) throw MeshError("TetGen returned no tetrahedra");
+  LinearMesh m;
+  m.points.resize(static_cast<std::size_t>(out.numberofpoints));
+  for (std::size_t v = 0; v < m.points.size(); ++v)
+    m.points[v] = {out.pointlist[3 * v], out.pointlist[3 * v + 1], out.pointlist[3 * v + 2]};
+  m.tets.resize(static_cast<std::size_t>(out.numberoftetrahedra));
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    for (int k = 0; k < 4; ++k) m.tets[t][k] = out.tetrahedronlist[4 * t + k];
+  return m;
+}
+
+double orientation(const LinearMesh& m, const std::array<int, 4>& t) {
+  const P3 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]], &d = m.points[t[3]];
+  const Eigen::Vector3d u(b[0] - a[0], b[1] - a[1], b[2] - a[2]), v(c[0] - a[0], c[1] - a[1], c[2] - a[2]),
+      w(d[0] - a[0], d[1] - a[1], d[2] - a[2]);
+  return u.cross(v).dot(w);
+}
+
+long long edge_key(int a, int b) { return static_cast<long long>(std::min(a, b)) << 32 | std::max(a, b); }
+
+// The faces met once: the boundary, oriented outward (against the opposite vertex), with their
+// vertices checked to be input points (on the ellipsoid).
+std::vector<std::array<int, 3>> boundary_faces(const LinearMesh& m, std::size_t n_surface_points) {
+  static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};  // outward for det > 0
+  std::unordered_map<std::string, int> count;
+  std::vector<std::array<int, 3>> candidates;
+  auto key = [](std::array<int, 3> f) {
+    std::sort(f.begin(), f.end());
+    return std::to_string(f[0]) + ',' + std::to_string(f[1]) + ',' + std::to_string(f[2]);
+  };
+  for (const auto& t : m.tets)
+    for (const auto& face : kFaces) {
+      const std::array<int, 3> f{t[face[0]], t[face[1]], t[face[2]]};
+      if (count[key(f)]++ == 0) candidates.push_back(f);
+    }
+  std::vector<std::array<int, 3>> boundary;
+  for (const auto& f : candidates)
+    if (count[key(f)] == 1) {
+      for (int v : f)
+        if (static_cast<std::size_t>(v) >= n_surface_points) throw MeshError("TetGen put a Steiner point on the surface");
+      boundary.push_back(f);
+    }
+  return boundary;
+}
+
+EllipsoidMesh quadratic_mesh(LinearMesh& m, const P3& r, std::size_t n_surface_points) {
+  for (auto& t : m.tets)
+    if (orientation(m, t) < 0) std::swap(t[1], t[2]);
+  const auto boundary = boundary_faces(m, n_surface_points);
+  std::unordered_map<long long, bool> on_surface;
+  for (const auto& f : boundary)
+    for (int k = 0; k < 3; ++k) on_surface[edge_key(f[k], f[(k + 1) % 3])] = true;
+  std::vector<P3> nodes = m.points;
+  std::unordered_map<long long, int> mid;  // numbered in order of first use: deterministic
+  auto mid_node = [&](int a, int b) {
+    const auto [it, inserted] = mid.try_emplace(edge_key(a, b), static_cast<int>(nodes.size()));
+    if (inserted) {
+      const P3 c{0.5 * (nodes[a][0] + nodes[b][0]), 0.5 * (nodes[a][1] + nodes[b][1]), 0.5 * (nodes[a][2] + nodes[b][2])};
+      nodes.push_back(on_surface.count(edge_key(a, b)) ? onto_ellipsoid(r, c) : c);
+    }
+    return it->second;
+  };
+  EllipsoidMesh out;
+  for (const auto& t : m.tets) {
+    std::array<int, kTet10Nodes> e{t[0], t[1], t[2], t[3]};
+    for (int k = 0; k < 6; ++k) e[4 + k] = mid_node(t[kTet10Edges[k][0]], t[kTet10Edges[k][1]]);
+    out.mesh.elements.push_back(e);
+  }
+  for (const auto& f : boundary)
+    out.boundary.push_back({f[0], f[1], f[2], mid_node(f[0], f[1]), mid_node(f[1], f[2]), mid_node(f[2], f[0])});
+  out.mesh.nodes_m.resize(3, static_cast<Eigen::Index>(nodes.size()));
+  for (std::size_t v = 0; v < nodes.size(); ++v)
+    for (int k = 0; k < 3; ++k) out.mesh.nodes_m(k, static_cast<Eigen::Index>(v)) = nodes[v][k];
+  return out;
+}
+
+void check_bounds(const MeshQuality& q, const EllipsoidMeshBounds& b) {
+  char reason[256] = "";
+  if (!(q.min_jacobian_ratio > 0) && !(q.min_jacobian_ratio >= b.min_jacobian_ratio))
+    std::snprintf(reason, sizeof reason, "a curved element has det J <= 0 (ratio %.3g)", q.min_jacobian_ratio);
+  else if (!(q.min_jacobian_ratio >= b.min_jacobian_ratio))
+    std::snprintf(reason, sizeof reason, "Jacobian ratio %.3g below %.3g", q.min_jacobian_ratio, b.min_jacobian_ratio);
+  else if (q.max_radius_edge > b.max_radius_edge)
+    std::snprintf(reason, sizeof reason, "radius-edge ratio %.3g above %.3g", q.max_radius_edge, b.max_radius_edge);
+  else if (q.min_dihedral_deg < b.min_dihedral_deg)
+    std::snprintf(reason, sizeof reason, "dihedral angle %.3g deg below %.3g", q.min_dihedral_deg, b.min_dihedral_deg);
+  if (reason[0] != '\0') throw MeshError(reason);
+}
+
+}  // namespace
+
+EllipsoidMesh mesh_ellipsoid(const EllipsoidMeshSettings& s, const EllipsoidMeshBounds& bounds) {
+  const P3& r = s.semi_axes_m;
+  if (!(r[0] > 0 && r[1] > 0 && r[2] > 0 && s.edge_length_m > 0))
+    throw std::invalid_argument("mesh_ellipsoid: semi-axes and edge length must be positive");
+  const double h = std::min(s.edge_length_m, 2 * std::min({r[0], r[1], r[2]}) / 3);
+  const SurfaceTriangulation surface = ellipsoid_surface(r, h);
+  LinearMesh linear = run_tetgen(surface, s, h);
+  for (std::size_t v = 0; v < surface.vertices_m.size(); ++v)
+    if (linear.points[v] != surface.vertices_m[v]) throw MeshError("TetGen moved a surface point");
+  EllipsoidMesh out = quadratic_mesh(linear, r, surface.vertices_m.size());
+  out.quality = mesh_quality(out.mesh);
+  out.quality.edge_length_m = h;
+  check_bounds(out.quality, bounds);
+  return out;
+}
+
+}  // namespace clatter::kernels::fem

@@ -1,0 +1,63 @@
+#pragma once
+// Quadratic (10-node) tetrahedral meshes of a solid ellipsoid x^2/a^2 + y^2/b^2 + z^2/c^2 <= 1 for
+// the modal bank's FEM (paper §5, Appendix E). The volume is tetrahedralised by TetGen from a
+// closed triangulation of the surface; mid-nodes are added here: interior edges at their straight
+// midpoints, boundary edges moved onto the ellipsoid, so the boundary faces are curved
+// (isoparametric) and the boundary geometry error is O(h^3) instead of O(h^2).
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "kernels/fem/assembly.hpp"
+#include "kernels/fem/mesh_quality.hpp"
+
+namespace clatter::kernels::fem {
+
+struct EllipsoidMeshSettings {
+  std::array<double, 3> semi_axes_m{1, 1, 1};  // a, b, c
+  double edge_length_m = 0.25;                 // target h; capped at (2 min axis)/3: 3 edges through the thinnest
+  double max_radius_edge = 1.5;                // TetGen's -q bound (circumradius / shortest edge)
+  double min_dihedral_deg = 12.0;              // TetGen's -q bound on the smallest dihedral angle
+};
+
+// What a mesh must satisfy to be used; looser than the switches because TetGen cannot split the
+// preserved surface (-Y), so tetrahedra touching it may miss the -q bounds.
+struct EllipsoidMeshBounds {
+  double max_radius_edge = 3.0;
+  double min_dihedral_deg = 5.0;
+  double min_jacobian_ratio = 0.2;  // min det J / max det J within each curved element
+};
+
+// A boundary face: 6 nodes (vertices 0-2 counter-clockwise seen from outside, then the mid-nodes
+// of edges 01, 12, 20), indices into the mesh's nodes.
+using BoundaryFace = std::array<int, 6>;
+
+struct EllipsoidMesh {
+  Tet10Mesh mesh;
+  std::vector<BoundaryFace> boundary;
+  MeshQuality quality;
+};
+
+// A mesh that could not be made, or failed the bounds: `what()` gives the reason.
+class MeshError : public std::runtime_error {
+ public:
+  explicit MeshError(const std::string& reason) : std::runtime_error("ellipsoid mesh: " + reason) {}
+};
+
+// Deterministic: the same settings give a bit-identical mesh. Throws std::invalid_argument for
+// non-positive axes or h, MeshError when TetGen fails or the mesh breaks `bounds`.
+EllipsoidMesh mesh_ellipsoid(const EllipsoidMeshSettings& settings, const EllipsoidMeshBounds& bounds = {});
+
+// The closed surface triangulation handed to TetGen (vertices on the ellipsoid, faces outward):
+// exposed for the tests.
+struct SurfaceTriangulation {
+  std::vector<std::array<double, 3>> vertices_m;
+  std::vector<std::array<int, 3>> faces;
+};
+SurfaceTriangulation ellipsoid_surface(const std::array<double, 3>& semi_axes_m, double edge_length_m);
+
+// The point of the ellipsoid on the ray from its centre through p (p != 0).
+std::array<double, 3> onto_ellipsoid(const std::array<double, 3>& semi_axes_m, const std::array<double, 3>& p_m);
+
+}  // namespace clatter::kernels::fem
