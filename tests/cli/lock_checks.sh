@@ -54,6 +54,16 @@ refused() {
   echo "$what: exit 2: $(grep '^clatter-bank: error' "logs/$log" | cut -c1-150)"
 }
 mkdir logs
+# Holders are stopped on purpose: whatever way this script ends, none may outlive it (a stopped
+# rank would keep its peer spinning in MPI and eat a core of every later test).
+launched=()
+cleanup() {
+  local l p
+  for l in "${launched[@]}"; do
+    for p in $(descendants "$l"); do kill -CONT "$p" 2> /dev/null; kill -KILL "$p" 2> /dev/null; done
+  done
+}
+trap cleanup EXIT
 
 pan -o straight.h5 > logs/straight.log 2>&1 || fail "straight run: $(tail -3 logs/straight.log)"
 ref=$(sum straight.h5)
@@ -62,6 +72,7 @@ echo "straight run:                       $ref"
 # (a)
 pan_np2 -o a.h5 > logs/a1.log 2>&1 &
 first=$!
+launched+=("$first")
 wait_for a.h5.tasks.lock
 holder=$(holder_pid a.h5.tasks.lock)
 ranks=$(ranks_of "$first")
@@ -79,6 +90,7 @@ echo "(a) the holder's bank:              $(sum a.h5)"
 # (b)
 pan_np2 -o b.h5 > logs/b1.log 2>&1 &
 first=$!
+launched+=("$first")
 wait_for b.h5.tasks.lock
 holder=$(holder_pid b.h5.tasks.lock)
 wait_for b.h5.tasks/p000-f1.h5
@@ -115,6 +127,7 @@ echo "(c) another host's lock: fresh refused, stale broken"
 # (d)
 pan -o d.h5 --slice 0/2 > logs/d0.log 2>&1 &
 first=$!
+launched+=("$first")
 wait_for d.h5.tasks.lock-slice-0-of-2
 holder=$(holder_pid d.h5.tasks.lock-slice-0-of-2)
 kill -STOP "$holder"

@@ -12,6 +12,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch" || exit 1
 fail() {
   echo "FAIL: $*"
+  [[ -n ${holder:-} ]] && kill -CONT "$holder" 2> /dev/null  # a stopped rank must not outlive the test
   for f in clatter-pan*.out; do [[ -e $f ]] && { echo "== $f"; tail -20 "$f"; }; done
   if [[ -n ${SLURM_CONF:-} ]]; then  # what Slurm thought, while it still runs
     [[ -f queue.log ]] && { echo "== queue states polled (count, seconds, state)"; uniq -c -f1 queue.log | tail -20; }
