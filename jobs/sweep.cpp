@@ -114,9 +114,10 @@ std::string scan_results(const std::vector<std::string>& names, const std::vecto
   prepare_results_dir(o.results_dir, config_toml);
   std::string pending_text;
   std::size_t present = 0;
+  const std::string id = io::sweep_id(config_toml);  // hashed once, not per task
   for (std::size_t t : slice) {
     const std::string path = io::task_path(o.results_dir, names[t]);
-    const io::TaskRecord r = io::inspect_task(path, names[t], io::sweep_id(config_toml));
+    const io::TaskRecord r = io::inspect_task(path, names[t], id);
     if (r.state == io::TaskState::foreign) throw foreign_task_error(path, r, config_toml);
     if (r.state != io::TaskState::missing) ++present;
     if (r.state == io::TaskState::done) {
