@@ -8,12 +8,14 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "io/content_hash.hpp"
 #include "io/h5.hpp"
 #include "io/pan_bank.hpp"
 #include "jobs/command.hpp"
+#include "jobs/modal_tools.hpp"
 #include "kernels/pan/field.hpp"
 #include "mpi/comm.hpp"
 
@@ -115,10 +117,20 @@ Command add_checksum_command(CLI::App& parent) {
 }
 
 Command add_info_command(CLI::App& parent) {
-  auto* app = parent.add_subcommand("info", "describe a PAN bank: proxies, fields, epsilon, size, provenance");
+  auto* app = parent.add_subcommand("info", "describe a bank: a PAN bank's proxies, fields, epsilon, size, provenance; "
+                                            "a modal bank's entries, modes and multiplicities");
   auto path = std::make_shared<std::string>();
-  app->add_option("bank", *path, "PAN bank file")->required();
-  return {app, [path](const JobContext& context) -> int { return print_on_root(context, [&] { return bank_info(*path); }); }};
+  auto entry = std::make_shared<std::optional<std::size_t>>();
+  app->add_option("bank", *path, "PAN or modal bank file")->required();
+  app->add_option("--entry", *entry, "modal bank: list this entry's modes (index, frequency, damping, multiplet, "
+                                     "multiplicity, residual) as CSV");
+  return {app, [path, entry](const JobContext& context) -> int {
+            return print_on_root(context, [&] {
+              if (is_modal_bank(*path)) return modal_bank_info(*path, *entry);
+              if (entry->has_value()) throw InputError("--entry: only for a modal bank; " + *path + " is not one");
+              return bank_info(*path);
+            });
+          }};
 }
 
 Command add_probe_command(CLI::App& parent) {

@@ -1,0 +1,253 @@
+#include "io/modal_bank.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "io/provenance.hpp"
+#include "io/sweep_files.hpp"
+
+namespace clatter::io {
+namespace {
+
+using model::ModalEntry;
+
+template <class T, std::size_t N>
+std::vector<T> flatten(const std::vector<std::array<T, N>>& rows) {
+  std::vector<T> out;
+  out.reserve(rows.size() * N);
+  for (const auto& r : rows) out.insert(out.end(), r.begin(), r.end());
+  return out;
+}
+
+template <class T, std::size_t N>
+std::vector<std::array<T, N>> unflatten(const std::vector<T>& flat) {
+  std::vector<std::array<T, N>> out(flat.size() / N);
+  for (std::size_t i = 0; i < out.size(); ++i) std::copy_n(flat.begin() + static_cast<long>(i * N), N, out[i].begin());
+  return out;
+}
+
+void write_mesh_stats(File& f, const std::string& g, const model::ModalMeshStats& m) {
+  create_group(f, g);
+  write_attribute<std::int64_t>(f, g, "elements", m.elements);
+  write_attribute<std::int64_t>(f, g, "nodes", m.nodes);
+  write_attribute<std::int64_t>(f, g, "dofs", m.dofs);
+  write_attribute<double>(f, g, "edge_length_m", m.edge_length_m);
+  write_attribute<double>(f, g, "max_radius_edge", m.max_radius_edge);
+  write_attribute<double>(f, g, "mean_radius_edge", m.mean_radius_edge);
+  write_attribute<double>(f, g, "min_dihedral_deg", m.min_dihedral_deg);
+  write_attribute<double>(f, g, "max_dihedral_deg", m.max_dihedral_deg);
+  write_attribute<double>(f, g, "min_jacobian_ratio", m.min_jacobian_ratio);
+}
+
+model::ModalMeshStats read_mesh_stats(const File& f, const std::string& g) {
+  model::ModalMeshStats m;
+  m.elements = read_attribute<std::int64_t>(f, g, "elements");
+  m.nodes = read_attribute<std::int64_t>(f, g, "nodes");
+  m.dofs = read_attribute<std::int64_t>(f, g, "dofs");
+  m.edge_length_m = read_attribute<double>(f, g, "edge_length_m");
+  m.max_radius_edge = read_attribute<double>(f, g, "max_radius_edge");
+  m.mean_radius_edge = read_attribute<double>(f, g, "mean_radius_edge");
+  m.min_dihedral_deg = read_attribute<double>(f, g, "min_dihedral_deg");
+  m.max_dihedral_deg = read_attribute<double>(f, g, "max_dihedral_deg");
+  m.min_jacobian_ratio = read_attribute<double>(f, g, "min_jacobian_ratio");
+  return m;
+}
+
+void write_solve_record(File& f, const std::string& g, const model::ModalSolveRecord& s) {
+  create_group(f, g);
+  write_attribute<double>(f, g, "lambda_lo_rad2_s2", s.lambda_lo);
+  write_attribute<double>(f, g, "lambda_hi_rad2_s2", s.lambda_hi);
+  write_attribute<std::int64_t>(f, g, "below_lo", s.below_lo);
+  write_attribute<std::int64_t>(f, g, "below_hi", s.below_hi);
+  write_attribute<std::int64_t>(f, g, "found", s.found);
+  write_attribute<std::int64_t>(f, g, "shifts", s.shifts);
+  write_attribute<double>(f, g, "first_mode_estimate_hz", s.first_mode_estimate_hz);
+  write_attribute(f, g, "solver_options", s.solver_options);
+}
+
+model::ModalSolveRecord read_solve_record(const File& f, const std::string& g) {
+  model::ModalSolveRecord s;
+  s.lambda_lo = read_attribute<double>(f, g, "lambda_lo_rad2_s2");
+  s.lambda_hi = read_attribute<double>(f, g, "lambda_hi_rad2_s2");
+  s.below_lo = read_attribute<std::int64_t>(f, g, "below_lo");
+  s.below_hi = read_attribute<std::int64_t>(f, g, "below_hi");
+  s.found = read_attribute<std::int64_t>(f, g, "found");
+  s.shifts = read_attribute<std::int64_t>(f, g, "shifts");
+  s.first_mode_estimate_hz = read_attribute<double>(f, g, "first_mode_estimate_hz");
+  s.solver_options = read_string_attribute(f, g, "solver_options");
+  return s;
+}
+
+void write_cost(File& f, const std::string& g, const model::ModalEntryCost& c) {
+  create_group(f, g);
+  write_attribute<double>(f, g, "mesh_s", c.mesh_s);
+  write_attribute<double>(f, g, "assembly_s", c.assembly_s);
+  write_attribute<double>(f, g, "estimate_s", c.estimate_s);
+  write_attribute<double>(f, g, "solve_s", c.solve_s);
+  write_attribute<double>(f, g, "basis_s", c.basis_s);
+  write_attribute<double>(f, g, "total_s", c.total_s);
+  write_attribute<double>(f, g, "factor_memory_mb", c.factor_memory_mb);
+  write_attribute<double>(f, g, "memory_max_mb", c.memory_max_mb);
+  write_attribute<std::int32_t>(f, g, "ranks", c.ranks);
+}
+
+model::ModalEntryCost read_cost(const File& f, const std::string& g) {
+  model::ModalEntryCost c;
+  c.mesh_s = read_attribute<double>(f, g, "mesh_s");
+  c.assembly_s = read_attribute<double>(f, g, "assembly_s");
+  c.estimate_s = read_attribute<double>(f, g, "estimate_s");
+  c.solve_s = read_attribute<double>(f, g, "solve_s");
+  c.basis_s = read_attribute<double>(f, g, "basis_s");
+  c.total_s = read_attribute<double>(f, g, "total_s");
+  c.factor_memory_mb = read_attribute<double>(f, g, "factor_memory_mb");
+  c.memory_max_mb = read_attribute<double>(f, g, "memory_max_mb");
+  c.ranks = read_attribute<std::int32_t>(f, g, "ranks");
+  return c;
+}
+
+// The entry's arrays, without its cost (which a bank keeps in provenance).
+void write_entry_content(File& f, const std::string& g, const ModalEntry& e) {
+  const std::size_t n = e.modes(), ns = e.surface_nodes_m.size();
+  if (e.damping_ratios.size() != n || e.cluster.size() != n || e.relative_residuals.size() != n ||
+      e.shapes.size() != n * ns * 3)
+    throw std::invalid_argument("modal entry: per-mode arrays of unequal length");
+  create_group(f, g);
+  write_dataset<double>(f, g + "/axes_m", e.axes_m, {3}, "m");
+  write_dataset<double>(f, g + "/frequencies_hz", e.frequencies_hz, {n}, "Hz");
+  write_dataset<double>(f, g + "/damping_ratios", e.damping_ratios, {n}, "1");
+  write_dataset<std::int32_t>(f, g + "/cluster", e.cluster, {n}, "1");
+  write_dataset<double>(f, g + "/relative_residuals", e.relative_residuals, {n}, "1");
+  write_dataset<double>(f, g + "/surface/nodes_m", flatten(e.surface_nodes_m), {ns, 3}, "m", true);
+  write_dataset<std::int32_t>(f, g + "/surface/faces", flatten(e.surface_faces), {e.surface_faces.size(), 6}, "1", true);
+  write_dataset<double>(f, g + "/shapes", e.shapes, {n, ns, 3}, "kg^-1/2", true);
+  write_mesh_stats(f, g + "/mesh", e.mesh);
+  write_solve_record(f, g + "/solve", e.solve);
+}
+
+// Everything a reader relies on: shapes agree, frequencies ascend, indices are in range.
+void check_entry(const File& f, const std::string& g, const ModalEntry& e) {
+  auto bad = [&](const std::string& what) { return InputError(fmt::format("{}: {}: {}", f.path(), g, what)); };
+  const std::size_t n = e.modes();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(e.frequencies_hz[i] > 0) || !std::isfinite(e.frequencies_hz[i]))
+      throw bad(fmt::format("frequencies_hz[{}] = {} is not a positive frequency", i, e.frequencies_hz[i]));
+    if (i > 0 && e.frequencies_hz[i] < e.frequencies_hz[i - 1])
+      throw bad(fmt::format("frequencies_hz[{}] = {} is below frequencies_hz[{}]: not ascending", i,
+                            e.frequencies_hz[i], i - 1));
+    if (e.cluster[i] != (i == 0 ? 0 : e.cluster[i - 1]) && e.cluster[i] != (i == 0 ? 0 : e.cluster[i - 1] + 1))
+      throw bad(fmt::format("cluster[{}] = {} does not number the multiplets in order", i, e.cluster[i]));
+    if (!(e.relative_residuals[i] >= 0) || !(e.damping_ratios[i] >= 0))
+      throw bad(fmt::format("mode {}: residual {} or damping {} is not a non-negative number", i,
+                            e.relative_residuals[i], e.damping_ratios[i]));
+  }
+  const auto ns = static_cast<std::int32_t>(e.surface_nodes_m.size());
+  for (std::size_t t = 0; t < e.surface_faces.size(); ++t)
+    for (std::int32_t v : e.surface_faces[t])
+      if (v < 0 || v >= ns) throw bad(fmt::format("surface/faces[{}] names node {} of {}", t, v, ns));
+  for (double x : e.shapes)
+    if (!std::isfinite(x)) throw bad("shapes holds a non-finite value");
+}
+
+}  // namespace
+
+void write_modal_entry(File& file, const std::string& group, const ModalEntry& entry) {
+  write_entry_content(file, group, entry);
+  write_cost(file, group + "/cost", entry.cost);
+}
+
+ModalEntry read_modal_entry(const File& f, const std::string& g) {
+  ModalEntry e;
+  const auto axes = read_dataset<double>(f, g + "/axes_m", {3}, "m");
+  std::copy(axes.begin(), axes.end(), e.axes_m.begin());
+  e.frequencies_hz = read_dataset<double>(f, g + "/frequencies_hz", {-1}, "Hz");
+  const auto n = static_cast<long long>(e.frequencies_hz.size());
+  e.damping_ratios = read_dataset<double>(f, g + "/damping_ratios", {n}, "1");
+  e.cluster = read_dataset<std::int32_t>(f, g + "/cluster", {n}, "1");
+  e.relative_residuals = read_dataset<double>(f, g + "/relative_residuals", {n}, "1");
+  Dims dims;
+  e.surface_nodes_m = unflatten<double, 3>(read_dataset<double>(f, g + "/surface/nodes_m", {-1, 3}, "m", &dims));
+  const auto ns = static_cast<long long>(dims[0]);
+  e.surface_faces = unflatten<std::int32_t, 6>(read_dataset<std::int32_t>(f, g + "/surface/faces", {-1, 6}, "1"));
+  e.shapes = read_dataset<double>(f, g + "/shapes", {n, ns, 3}, "kg^-1/2");
+  e.mesh = read_mesh_stats(f, g + "/mesh");
+  e.solve = read_solve_record(f, g + "/solve");
+  if (exists(f, g + "/cost")) e.cost = read_cost(f, g + "/cost");
+  check_entry(f, g, e);
+  return e;
+}
+
+void write_modal_bank(const std::string& path, const model::ModalBank& bank, const std::string& command,
+                      const std::string& config_toml, int n_ranks) {
+  const auto& h = bank.header;
+  auto file = File::create(path);
+  write_header(file, kModalBankFormat, kModalBankFormatVersion);
+  create_group(file, "/material");
+  write_attribute(file, "/material", "name", h.material.name);
+  write_attribute(file, "/material", "source", h.material.source);
+  write_attribute<double>(file, "/material", "rho_kg_m3", h.material.rho_kg_m3);
+  write_attribute<double>(file, "/material", "youngs_pa", h.material.youngs_pa);
+  write_attribute<double>(file, "/material", "poisson", h.material.poisson);
+  write_attribute<double>(file, "/material", "rayleigh_alpha_1_s", h.material.rayleigh_alpha_1_s);
+  write_attribute<double>(file, "/material", "rayleigh_beta_s", h.material.rayleigh_beta_s);
+  create_group(file, "/settings");
+  write_attribute<double>(file, "/settings", "f_max_multiple", h.f_max_multiple);
+  write_attribute<double>(file, "/settings", "elements_per_wavelength", h.elements_per_wavelength);
+  write_attribute<double>(file, "/settings", "min_ratio", h.min_ratio);
+  write_attribute<double>(file, "/settings", "cluster_gap", h.cluster_gap);
+  write_attribute<double>(file, "/settings", "solver_tolerance", h.solver_tolerance);
+  write_attribute<double>(file, "/settings", "residual_limit", h.residual_limit);
+  write_attribute<std::int32_t>(file, "/settings", "ranks_per_task", h.ranks_per_task);
+  std::vector<double> axes;
+  for (const auto& e : bank.entries) axes.insert(axes.end(), e.axes_m.begin(), e.axes_m.end());
+  create_group(file, "/entries");
+  write_dataset<double>(file, "/entries/axes_m", axes, {bank.entries.size(), 3}, "m");
+  for (std::size_t i = 0; i < bank.entries.size(); ++i)
+    write_entry_content(file, fmt::format("/entries/{:04d}", i), bank.entries[i]);
+  write_sweep_status(file, bank.sweep);
+  write_provenance(file, command, config_toml, n_ranks);
+  for (std::size_t i = 0; i < bank.entries.size(); ++i)
+    write_cost(file, fmt::format("/provenance/run/entries/{:04d}", i), bank.entries[i].cost);
+  file.commit();
+}
+
+model::ModalBank read_modal_bank(const std::string& path) {
+  auto file = File::open(path);
+  check_header(file, kModalBankFormat, kModalBankFormatVersion);
+  model::ModalBank bank;
+  auto& h = bank.header;
+  auto& m = h.material;
+  m.name = read_string_attribute(file, "/material", "name");
+  m.source = read_string_attribute(file, "/material", "source");
+  m.rho_kg_m3 = read_attribute<double>(file, "/material", "rho_kg_m3");
+  m.youngs_pa = read_attribute<double>(file, "/material", "youngs_pa");
+  m.poisson = read_attribute<double>(file, "/material", "poisson");
+  m.rayleigh_alpha_1_s = read_attribute<double>(file, "/material", "rayleigh_alpha_1_s");
+  m.rayleigh_beta_s = read_attribute<double>(file, "/material", "rayleigh_beta_s");
+  if (!(m.rho_kg_m3 > 0) || !(m.youngs_pa > 0) || !(m.poisson > -1 && m.poisson < 0.5))
+    throw InputError(fmt::format("{}: /material: rho {} kg/m^3, E {} Pa, nu {}: not an elastic material", path,
+                                 m.rho_kg_m3, m.youngs_pa, m.poisson));
+  h.f_max_multiple = read_attribute<double>(file, "/settings", "f_max_multiple");
+  h.elements_per_wavelength = read_attribute<double>(file, "/settings", "elements_per_wavelength");
+  h.min_ratio = read_attribute<double>(file, "/settings", "min_ratio");
+  h.cluster_gap = read_attribute<double>(file, "/settings", "cluster_gap");
+  h.solver_tolerance = read_attribute<double>(file, "/settings", "solver_tolerance");
+  h.residual_limit = read_attribute<double>(file, "/settings", "residual_limit");
+  h.ranks_per_task = read_attribute<std::int32_t>(file, "/settings", "ranks_per_task");
+  Dims dims;
+  const auto axes = read_dataset<double>(file, "/entries/axes_m", {-1, 3}, "m", &dims);
+  for (std::size_t i = 0; i < dims[0]; ++i) {
+    bank.entries.push_back(read_modal_entry(file, fmt::format("/entries/{:04d}", i)));
+    if (!std::equal(axes.begin() + static_cast<long>(3 * i), axes.begin() + static_cast<long>(3 * i + 3),
+                    bank.entries.back().axes_m.begin()))
+      throw InputError(fmt::format("{}: /entries/{:04d}/axes_m differs from row {} of /entries/axes_m", path, i, i));
+    const std::string cost = fmt::format("/provenance/run/entries/{:04d}", i);
+    if (exists(file, cost)) bank.entries.back().cost = read_cost(file, cost);
+  }
+  bank.sweep = read_sweep_status(file);
+  return bank;
+}
+
+}  // namespace clatter::io

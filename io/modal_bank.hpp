@@ -1,0 +1,29 @@
+#pragma once
+// The modal soundbank file (format "clatter-modal-bank", docs/bank-format.md "Modal bank"): the
+// material and settings, then one group per ellipsoid /entries/eNNN with its frequencies,
+// damping, multiplets, residuals, curved surface mesh, mass-normalized surface mode shapes, mesh
+// quality and solver record. The data is model::ModalBank (model/modal_bank.hpp). A sweep's task
+// file holds one entry in the same layout under /result.
+#include <string>
+
+#include "io/h5.hpp"
+#include "model/modal_bank.hpp"
+
+namespace clatter::io {
+
+inline constexpr const char* kModalBankFormat = "clatter-modal-bank";
+inline constexpr int kModalBankFormatVersion = 1;
+
+// Writes atomically; every dataset shuffled, deflated and Fletcher-32 checksummed. Each entry's
+// wall times go under /provenance/run/entries (left out of the content hash).
+void write_modal_bank(const std::string& path, const model::ModalBank& bank, const std::string& command,
+                      const std::string& config_toml, int n_ranks);
+// Reads and checks a bank (format, version, every shape and unit, index ranges, ascending
+// frequencies, checksums); InputError naming the file and what is wrong.
+model::ModalBank read_modal_bank(const std::string& path);
+
+// One entry under `group` (a task file's payload, or a bank's /entries/eNNN), cost included.
+void write_modal_entry(File& file, const std::string& group, const model::ModalEntry& entry);
+model::ModalEntry read_modal_entry(const File& file, const std::string& group);
+
+}  // namespace clatter::io

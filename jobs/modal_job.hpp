@@ -1,0 +1,31 @@
+#pragma once
+// One entry of the modal bank (003 §5): the ellipsoid meshed twice (a coarse pre-solve estimates
+// f_1, which sets h from the shear wavelength at f_max and the sliced interval), K and M assembled
+// on the task group, every mode in [f_1, f_max] solved and fixed by the basis rule, the shapes
+// gathered on the surface.
+#include <mpi.h>
+
+#include <string>
+
+#include "jobs/modal_spec.hpp"
+#include "jobs/sweep.hpp"
+#include "model/modal_bank.hpp"
+
+namespace clatter::jobs {
+
+// Collective on `group`; the full entry on the group's rank 0, an empty one elsewhere. Throws
+// TaskFailure (mesh quality, count check, residual) or Interrupted, alike on every rank.
+model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::size_t entry);
+
+// The sweep's task: build_modal_entry and, on the group leader, the writer of its task file.
+TaskWriter run_modal_task(MPI_Comm group, const ModalSpec& spec, const ModalTask& task);
+
+// The bank from a results folder: every task found done, the others listed as failed or missing.
+// The header's ranks_per_task is the entries' common group size (0 when a resume changed it).
+model::ModalBank merge_modal_results(const ModalSpec& spec, const std::string& results_dir,
+                                     const std::string& config_toml);
+
+// The edge length that resolves the shear wavelength at f_max: c_s / f_max / elements_per_wavelength.
+double modal_edge_length_m(const ModalSpec& spec, double first_frequency_hz);
+
+}  // namespace clatter::jobs
