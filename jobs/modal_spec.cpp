@@ -34,7 +34,8 @@ const io::Schema& modal_schema() {
           {"material.name", std::string("glass"), "material of the bank: a table of material.table"},
           {"material.table", std::string(""), "materials file (TOML, docs/materials.md); empty: the built-in "
                                               "configs/materials.toml"},
-          {"patch.min_ratio", 0.1, "smallest axis ratio a/c covered (the pancake and cigar corners)", {0.0, 1.0, true}},
+          {"patch.min_ratio", 0.1, "smallest axis ratio a/c covered (the pancake and cigar corners)",
+           {0.0, 1.0, true, true}},
           {"patch.samples", default_samples(), "normalized semi-axes a <= b <= c, a^2 + b^2 + c^2 = 1 [m], one entry "
                                                "each (default: modal-samples output)", {0.0, 1.0, true}, {}, 3},
           {"modes.f_max_multiple", 4.0, "keep every mode up to f_max = this x f_1", {1.0, 64.0, true}},

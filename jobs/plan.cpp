@@ -9,13 +9,18 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include "core/errors.hpp"
 #include "jobs/command.hpp"
+#include "jobs/modal_plan.hpp"
+#include "jobs/modal_spec.hpp"
 #include "jobs/pan_job.hpp"
 #include "jobs/run_options.hpp"
+#include "io/text_file.hpp"
 #include "mpi/comm.hpp"
+#include "petsc/session.hpp"
 
 namespace fs = std::filesystem;
 
@@ -52,8 +57,9 @@ Calibration calibrate(const io::Config& config, double given_rate) {
 }
 
 std::string sweep_command(const PlanOptions& o, const std::string& results, const std::string& extra) {
-  return fmt::format("{} pan --config {} --out {} --results {} --ranks-per-task {} --resume --progress-interval 60 --log-view{}",
-                     o.binary, o.config_path, o.out, results, o.ranks_per_task, extra);
+  return fmt::format("{} {} --config {} --out {} --results {} --ranks-per-task {} --resume --progress-interval 60 "
+                     "--log-view{}",
+                     o.binary, o.kind, o.config_path, o.out, results, o.ranks_per_task, extra);
 }
 
 // Slurm signals the ranks themselves 120 s before the limit (--signal=TERM@120, no B: a signal to
@@ -107,7 +113,7 @@ PlanCost plan_cost(const io::Config& config, const PanSpec& spec, std::size_t n_
 }
 
 // The plan as printed: the sweep, the cost per task and of the job, and every task.
-std::string plan_report(const PanSpec& spec, const std::vector<PanTask>& tasks, const PlanOptions& o, const PlanCost& c) {
+std::string pan_report(const PanSpec& spec, const std::vector<PanTask>& tasks, const PlanOptions& o, const PlanCost& c) {
   const auto& g = spec.solve.problem.grid;
   std::string out = fmt::format("plan: {}: {} proxies x {} fields = {} tasks\n", o.config_path.empty() ? "defaults" : o.config_path,
                                 spec.proxies_bc_m.size(), spec.solve.fields.size(), tasks.size());
@@ -142,44 +148,53 @@ PlanOptions freeze_config(const io::Config& config, const PlanOptions& o) {
 void write_merge_script(const PlanOptions& o, const std::string& results) {
   write_script(o.sbatch + ".merge", fmt::format(R"(#!/bin/bash
 # Merges the slices of {} into {} once every array element succeeded (--dependency=afterok).
-#SBATCH --job-name=clatter-pan-merge
+#SBATCH --job-name=clatter-{}-merge
 #SBATCH --ntasks=1
 #SBATCH --time=0:30:00
-#SBATCH --output=clatter-pan-merge-%j.out
+#SBATCH --output=clatter-{}-merge-%j.out
 set -u
 srun --mpi=pmix {} merge --results {} --out {}
-)", o.sbatch, o.out, o.binary, results, o.out));
+)", o.sbatch, o.out, o.kind, o.kind, o.binary, results, o.out));
 }
 
 // Writes the sweep script (and with --array the merge script) and returns the report's lines on them.
-std::string write_sbatch_scripts(const io::Config& config, const PlanOptions& o, std::size_t n_tasks, const PlanCost& c) {
+std::string write_sbatch_scripts(const io::Config& config, const PlanOptions& o, const PlanEstimate& e) {
   const std::string results = o.results.empty() ? o.out + ".tasks" : o.results;
   const PlanOptions job = freeze_config(config, o);
+  const std::size_t n_tasks = e.task_s.size();
+  const int groups = o.ranks / o.ranks_per_task;
   const std::string header = fmt::format(
       "#!/bin/bash\n# Written by clatter-bank plan for {} ({} tasks; predicted {} on {} ranks).\n", job.config_path,
-      n_tasks, clock_text(c.wall_s), o.ranks);
+      n_tasks, clock_text(list_schedule_s(e.task_s, groups)), o.ranks);
   // One sweep job: the whole bank, or (array) one slice of it per element. Either way it requeues
   // itself when interrupted (exit 3) and every start resumes.
   const bool array = o.array > 0;
   const std::size_t per_element =
       array ? (n_tasks + static_cast<std::size_t>(o.array) - 1) / static_cast<std::size_t>(o.array) : n_tasks;
-  const std::size_t job_waves = (per_element + static_cast<std::size_t>(c.groups) - 1) / static_cast<std::size_t>(c.groups);
-  const double job_limit_s = 1.5 * static_cast<double>(job_waves) * c.task_s + 600;
+  double slowest_element_s = 0;  // element K runs tasks t with t % array == K
+  for (int k = 0; k < std::max(o.array, 1); ++k) {
+    std::vector<double> mine;
+    for (std::size_t t = static_cast<std::size_t>(k); t < n_tasks; t += static_cast<std::size_t>(std::max(o.array, 1)))
+      mine.push_back(e.task_s[t]);
+    slowest_element_s = std::max(slowest_element_s, list_schedule_s(mine, groups));
+  }
+  const double job_limit_s = 1.5 * slowest_element_s + 600;
   write_script(o.sbatch,
-               header + fmt::format(R"(#SBATCH --job-name=clatter-pan{}
+               header + fmt::format(R"(#SBATCH --job-name=clatter-{}{}
 {}#SBATCH --nodes={}
 #SBATCH --ntasks={}
 #SBATCH --time={}
 #SBATCH --signal=TERM@120
 #SBATCH --requeue
 #SBATCH --open-mode=append
-#SBATCH --output=clatter-pan-{}.out
+#SBATCH --output=clatter-{}-{}.out
 set -u
 {}if [ "$rc" -eq 3 ]; then echo "clatter: interrupted (exit 3), requeueing"; scontrol requeue "{}"; fi
 exit "$rc"
 )",
-                                    array ? "-array" : "", array ? fmt::format("#SBATCH --array=0-{}\n", o.array - 1) : "",
-                                    c.nodes, o.ranks, clock_text(job_limit_s), array ? "%A_%a" : "%j",
+                                    o.kind, array ? "-array" : "",
+                                    array ? fmt::format("#SBATCH --array=0-{}\n", o.array - 1) : "", e.nodes, o.ranks,
+                                    clock_text(job_limit_s), o.kind, array ? "%A_%a" : "%j",
                                     run_block(sweep_command(
                                         job, results, array ? " --slice ${SLURM_ARRAY_TASK_ID}/${SLURM_ARRAY_TASK_COUNT}" : "")),
                                     array ? "${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}" : "$SLURM_JOB_ID"));
@@ -190,23 +205,34 @@ exit "$rc"
                      o.sbatch, o.array, per_element, clock_text(job_limit_s), o.sbatch, o.sbatch, o.sbatch);
 }
 
+PlanEstimate pan_estimate(const io::Config& config, const PlanOptions& o) {
+  const PanSpec spec = make_pan_spec(config);
+  const auto tasks = pan_tasks(spec);
+  const PlanCost cost = plan_cost(config, spec, tasks.size(), o);
+  return {pan_report(spec, tasks, o, cost), std::vector<double>(tasks.size(), cost.task_s), cost.nodes};
+}
+
 }  // namespace
 
+double list_schedule_s(const std::vector<double>& task_s, int groups) {
+  std::vector<double> free_at(static_cast<std::size_t>(std::max(groups, 1)), 0.0);
+  for (double t : task_s) *std::min_element(free_at.begin(), free_at.end()) += t;
+  return *std::max_element(free_at.begin(), free_at.end());
+}
+
 std::string run_plan(const io::Config& config, const PlanOptions& o) {
-  const PanSpec spec = make_pan_spec(config);
   if (o.ranks < 1) throw InputError(fmt::format("--ranks {}: must be >= 1", o.ranks));
   if (o.ranks_per_task < 1 || o.ranks % o.ranks_per_task != 0)
     throw InputError(fmt::format("--ranks {} --ranks-per-task {}: the ranks per task must divide the ranks", o.ranks,
                                  o.ranks_per_task));
-  const auto tasks = pan_tasks(spec);
-  const PlanCost cost = plan_cost(config, spec, tasks.size(), o);
-  std::string out = plan_report(spec, tasks, o, cost);
-  if (!o.sbatch.empty()) out += write_sbatch_scripts(config, o, tasks.size(), cost);
+  const PlanEstimate e = o.kind == "modal" ? modal_plan_estimate(config, o) : pan_estimate(config, o);
+  std::string out = e.report;
+  if (!o.sbatch.empty()) out += write_sbatch_scripts(config, o, e);
   return out;
 }
 
 Command add_plan_command(CLI::App& parent) {
-  auto* app = parent.add_subcommand("plan", "predict a PAN sweep's cost (tasks, cells x steps, memory per rank, wall "
+  auto* app = parent.add_subcommand("plan", "predict a PAN or modal sweep's cost (per task work, memory per rank, wall "
                                             "time from a calibration solve run here) and write Slurm batch scripts");
   auto options = std::make_shared<JobOptions>();
   auto plan = std::make_shared<PlanOptions>();
@@ -220,18 +246,27 @@ Command add_plan_command(CLI::App& parent) {
   app->add_option("--sbatch", plan->sbatch, "write a ready sbatch script here");
   app->add_option("--array", plan->array, "with --sbatch: a job array of N elements and a merge job (FILE.merge)");
   return {app, [options, plan](const JobContext& context) -> int {
-            const auto config = job_config(context.world, pan_schema(), *options);
+            // The bank kind is the config file's: a modal config has a [modes] table.
+            std::string text;
+            mpi::agree(context.world, [&] {
+              if (!options->config_path.empty()) text = io::read_text_file(options->config_path);
+            });
+            plan->kind = is_modal_config(text) ? "modal" : "pan";
+            if (plan->kind == "modal" && options->out == "bank.h5") options->out = "modal.h5";
+            const auto config = job_config(context.world, plan->kind == "modal" ? modal_schema() : pan_schema(), *options);
             if (!config) return kExitOk;
             // The scripts run elsewhere and later: every path in them is absolute.
             plan->config_path = options->config_path.empty() ? "" : fs::absolute(options->config_path).string();
             plan->out = fs::absolute(options->out).string();
             if (!plan->results.empty()) plan->results = fs::absolute(plan->results).string();
             plan->binary = fs::canonical("/proc/self/exe").string();
-            std::string text;
+            std::optional<petsc::Session> petsc;
+            if (plan->kind == "modal") petsc.emplace(context.world);
+            std::string report;
             mpi::agree(context.world, [&] {
-              if (context.is_root) text = run_plan(*config, *plan);
+              if (context.is_root) report = run_plan(*config, *plan);
             });
-            if (context.is_root) std::fputs(text.c_str(), stdout);
+            if (context.is_root) std::fputs(report.c_str(), stdout);
             return kExitOk;
           }};
 }

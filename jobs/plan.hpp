@@ -1,16 +1,19 @@
 #pragma once
-// `clatter-bank plan`: what a PAN sweep will cost before it is submitted: the tasks, cells x steps
-// per task, memory per rank and a predicted wall time from a calibration solve measured on this
-// machine; and ready Slurm batch scripts (docs/cluster.md).
+// `clatter-bank plan`: what a sweep will cost before it is submitted, and ready Slurm batch scripts
+// (docs/cluster.md). PAN: the tasks, cells x steps per task, memory per rank and a predicted wall
+// time from a calibration solve measured on this machine. Modal (jobs/modal_plan.hpp): each
+// entry's mesh and mode count, from one entry solved here.
 #include <mpi.h>
 
 #include <string>
+#include <vector>
 
 #include "io/config.hpp"
 
 namespace clatter::jobs {
 
 struct PlanOptions {
+  std::string kind = "pan";    // the bank: "pan" or "modal" (from the config file)
   int ranks = 1;               // MPI ranks of the job
   int ranks_per_task = 1;
   int cores_per_node = 0;      // 0: this machine's
@@ -23,7 +26,18 @@ struct PlanOptions {
   std::string binary;          // clatter-bank to call in the scripts
 };
 
+// What a plan predicts: the report's lines and each task's wall time on its group.
+struct PlanEstimate {
+  std::string report;
+  std::vector<double> task_s;
+  int nodes = 1;
+};
+
 // Runs on rank 0 (the calibration solve is serial); returns the text to print.
 std::string run_plan(const io::Config& config, const PlanOptions& options);
+
+// The predicted wall time of these tasks handed out in order to `groups` groups, each taking the
+// next task when it is free (jobs/sweep.hpp's dynamic hand-out).
+double list_schedule_s(const std::vector<double>& task_s, int groups);
 
 }  // namespace clatter::jobs
