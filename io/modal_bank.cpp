@@ -12,6 +12,9 @@
 namespace clatter::io {
 namespace {
 
+// kernels/modal/mode_basis.hpp kReferenceFields (io/ does not include kernels/).
+constexpr std::int32_t kernels_reference_fields = 60;
+
 using model::ModalEntry;
 
 template <class T, std::size_t N>
@@ -62,7 +65,7 @@ void write_solve_record(File& f, const std::string& g, const model::ModalSolveRe
   write_attribute<double>(f, g, "lambda_hi_rad2_s2", s.lambda_hi);
   write_attribute<std::int64_t>(f, g, "below_lo", s.below_lo);
   write_attribute<std::int64_t>(f, g, "below_hi", s.below_hi);
-  write_attribute<std::int64_t>(f, g, "found", s.found);
+  write_attribute<std::int64_t>(f, g, "found_in_interval", s.found_in_interval);
   write_attribute<std::int64_t>(f, g, "shifts", s.shifts);
   write_attribute<double>(f, g, "first_mode_estimate_hz", s.first_mode_estimate_hz);
   write_attribute(f, g, "solver_options", s.solver_options);
@@ -74,7 +77,7 @@ model::ModalSolveRecord read_solve_record(const File& f, const std::string& g) {
   s.lambda_hi = read_attribute<double>(f, g, "lambda_hi_rad2_s2");
   s.below_lo = read_attribute<std::int64_t>(f, g, "below_lo");
   s.below_hi = read_attribute<std::int64_t>(f, g, "below_hi");
-  s.found = read_attribute<std::int64_t>(f, g, "found");
+  s.found_in_interval = read_attribute<std::int64_t>(f, g, "found_in_interval");
   s.shifts = read_attribute<std::int64_t>(f, g, "shifts");
   s.first_mode_estimate_hz = read_attribute<double>(f, g, "first_mode_estimate_hz");
   s.solver_options = read_string_attribute(f, g, "solver_options");
@@ -87,7 +90,6 @@ void write_cost(File& f, const std::string& g, const model::ModalEntryCost& c) {
   write_attribute<double>(f, g, "assembly_s", c.assembly_s);
   write_attribute<double>(f, g, "estimate_s", c.estimate_s);
   write_attribute<double>(f, g, "solve_s", c.solve_s);
-  write_attribute<double>(f, g, "basis_s", c.basis_s);
   write_attribute<double>(f, g, "total_s", c.total_s);
   write_attribute<double>(f, g, "factor_memory_mb", c.factor_memory_mb);
   write_attribute<double>(f, g, "memory_max_mb", c.memory_max_mb);
@@ -100,7 +102,6 @@ model::ModalEntryCost read_cost(const File& f, const std::string& g) {
   c.assembly_s = read_attribute<double>(f, g, "assembly_s");
   c.estimate_s = read_attribute<double>(f, g, "estimate_s");
   c.solve_s = read_attribute<double>(f, g, "solve_s");
-  c.basis_s = read_attribute<double>(f, g, "basis_s");
   c.total_s = read_attribute<double>(f, g, "total_s");
   c.factor_memory_mb = read_attribute<double>(f, g, "factor_memory_mb");
   c.memory_max_mb = read_attribute<double>(f, g, "memory_max_mb");
@@ -115,11 +116,12 @@ void write_entry_content(File& f, const std::string& g, const ModalEntry& e) {
       e.shapes.size() != n * ns * 3)
     throw std::invalid_argument("modal entry: per-mode arrays of unequal length");
   create_group(f, g);
-  write_dataset<double>(f, g + "/axes_m", e.axes_m, {3}, "m");
-  write_dataset<double>(f, g + "/frequencies_hz", e.frequencies_hz, {n}, "Hz");
-  write_dataset<double>(f, g + "/damping_ratios", e.damping_ratios, {n}, "1");
-  write_dataset<std::int32_t>(f, g + "/cluster", e.cluster, {n}, "1");
-  write_dataset<double>(f, g + "/relative_residuals", e.relative_residuals, {n}, "1");
+  write_attribute<std::uint32_t>(f, g, "sample", e.sample);
+  write_dataset<double>(f, g + "/axes_m", e.axes_m, {3}, "m", true);
+  write_dataset<double>(f, g + "/frequencies_hz", e.frequencies_hz, {n}, "Hz", true);
+  write_dataset<double>(f, g + "/damping_ratios", e.damping_ratios, {n}, "1", true);
+  write_dataset<std::int32_t>(f, g + "/cluster", e.cluster, {n}, "1", true);
+  write_dataset<double>(f, g + "/relative_residuals", e.relative_residuals, {n}, "1", true);
   write_dataset<double>(f, g + "/surface/nodes_m", flatten(e.surface_nodes_m), {ns, 3}, "m", true);
   write_dataset<std::int32_t>(f, g + "/surface/faces", flatten(e.surface_faces), {e.surface_faces.size(), 6}, "1", true);
   write_dataset<double>(f, g + "/shapes", e.shapes, {n, ns, 3}, "kg^-1/2", true);
@@ -151,6 +153,20 @@ void check_entry(const File& f, const std::string& g, const ModalEntry& e) {
     if (!std::isfinite(x)) throw bad("shapes holds a non-finite value");
 }
 
+// What the bank's settings promise of every entry: residuals within the limit, the count check
+// passed, exactly the 6 rigid motions below the interval.
+void check_against_settings(const File& f, const std::string& g, const ModalEntry& e, const model::ModalBankHeader& h) {
+  for (std::size_t i = 0; i < e.modes(); ++i)
+    if (e.relative_residuals[i] > h.residual_limit)
+      throw InputError(fmt::format("{}: {}: mode {} has relative residual {} above the bank's residual_limit {}",
+                                   f.path(), g, i, e.relative_residuals[i], h.residual_limit));
+  if (e.solve.found_in_interval != e.solve.below_hi - e.solve.below_lo || e.solve.below_lo != 6 ||
+      static_cast<std::int64_t>(e.modes()) > e.solve.found_in_interval)
+    throw InputError(fmt::format("{}: {}/solve: found_in_interval {}, below_lo {}, below_hi {} for {} modes: the "
+                                 "count check does not hold", f.path(), g, e.solve.found_in_interval, e.solve.below_lo,
+                                 e.solve.below_hi, e.modes()));
+}
+
 }  // namespace
 
 void write_modal_entry(File& file, const std::string& group, const ModalEntry& entry) {
@@ -160,6 +176,7 @@ void write_modal_entry(File& file, const std::string& group, const ModalEntry& e
 
 ModalEntry read_modal_entry(const File& f, const std::string& g) {
   ModalEntry e;
+  e.sample = read_attribute<std::uint32_t>(f, g, "sample");
   const auto axes = read_dataset<double>(f, g + "/axes_m", {3}, "m");
   std::copy(axes.begin(), axes.end(), e.axes_m.begin());
   e.frequencies_hz = read_dataset<double>(f, g + "/frequencies_hz", {-1}, "Hz");
@@ -197,13 +214,16 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   write_attribute<double>(file, "/settings", "elements_per_wavelength", h.elements_per_wavelength);
   write_attribute<double>(file, "/settings", "min_ratio", h.min_ratio);
   write_attribute<double>(file, "/settings", "cluster_gap", h.cluster_gap);
+  write_attribute<double>(file, "/settings", "degenerate_gap", h.degenerate_gap);
+  write_attribute<std::int32_t>(file, "/settings", "reference_fields", kernels_reference_fields);
+  write_attribute<double>(file, "/settings", "coarse_edge_m", h.coarse_edge_m);
   write_attribute<double>(file, "/settings", "solver_tolerance", h.solver_tolerance);
   write_attribute<double>(file, "/settings", "residual_limit", h.residual_limit);
   write_attribute<std::int32_t>(file, "/settings", "ranks_per_task", h.ranks_per_task);
   std::vector<double> axes;
   for (const auto& e : bank.entries) axes.insert(axes.end(), e.axes_m.begin(), e.axes_m.end());
   create_group(file, "/entries");
-  write_dataset<double>(file, "/entries/axes_m", axes, {bank.entries.size(), 3}, "m");
+  write_dataset<double>(file, "/entries/axes_m", axes, {bank.entries.size(), 3}, "m", true);
   for (std::size_t i = 0; i < bank.entries.size(); ++i)
     write_entry_content(file, fmt::format("/entries/{:04d}", i), bank.entries[i]);
   write_sweep_status(file, bank.sweep);
@@ -233,6 +253,8 @@ model::ModalBank read_modal_bank(const std::string& path) {
   h.elements_per_wavelength = read_attribute<double>(file, "/settings", "elements_per_wavelength");
   h.min_ratio = read_attribute<double>(file, "/settings", "min_ratio");
   h.cluster_gap = read_attribute<double>(file, "/settings", "cluster_gap");
+  h.degenerate_gap = read_attribute<double>(file, "/settings", "degenerate_gap");
+  h.coarse_edge_m = read_attribute<double>(file, "/settings", "coarse_edge_m");
   h.solver_tolerance = read_attribute<double>(file, "/settings", "solver_tolerance");
   h.residual_limit = read_attribute<double>(file, "/settings", "residual_limit");
   h.ranks_per_task = read_attribute<std::int32_t>(file, "/settings", "ranks_per_task");
@@ -243,6 +265,7 @@ model::ModalBank read_modal_bank(const std::string& path) {
     if (!std::equal(axes.begin() + static_cast<long>(3 * i), axes.begin() + static_cast<long>(3 * i + 3),
                     bank.entries.back().axes_m.begin()))
       throw InputError(fmt::format("{}: /entries/{:04d}/axes_m differs from row {} of /entries/axes_m", path, i, i));
+    check_against_settings(file, fmt::format("/entries/{:04d}", i), bank.entries.back(), h);
     const std::string cost = fmt::format("/provenance/run/entries/{:04d}", i);
     if (exists(file, cost)) bank.entries.back().cost = read_cost(file, cost);
   }

@@ -1,6 +1,7 @@
 #pragma once
 // The modal soundbank file (format "clatter-modal-bank", docs/bank-format.md "Modal bank"): the
-// material and settings, then one group per ellipsoid /entries/eNNN with its frequencies,
+// material and settings, then one group per ellipsoid /entries/NNNN (4 digits, in sample order,
+// failed samples absent; attribute `sample` is the index in patch.samples) with its frequencies,
 // damping, multiplets, residuals, curved surface mesh, mass-normalized surface mode shapes, mesh
 // quality and solver record. The data is model::ModalBank (model/modal_bank.hpp). A sweep's task
 // file holds one entry in the same layout under /result.

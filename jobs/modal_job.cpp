@@ -37,6 +37,7 @@ ModalSolveSettings solve_settings(const ModalSpec& spec) {
   ModalSolveSettings s;
   s.f_max_multiple = spec.header.f_max_multiple;
   s.cluster_gap = spec.header.cluster_gap;
+  s.degenerate_gap = spec.header.degenerate_gap;
   s.tolerance = spec.solver_tolerance;
   s.residual_limit = spec.header.residual_limit;
   s.max_iterations = spec.max_iterations;
@@ -111,9 +112,9 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
     modes = solve_modes(*model, reference, lambda1_estimate, settings);
     entry.cost.solve_s = since(t0);
   }
-  entry.cost.basis_s = 0;  // inside solve_s (stage "eigensolve/basis")
   entry.cost.factor_memory_mb = static_cast<double>(modes.stats.check_factor.memory_max_mb);
   entry.cost.memory_max_mb = modes.stats.memory_max_mb;
+  entry.sample = static_cast<std::uint32_t>(index);
   entry.axes_m = axes;
   entry.mesh = mesh_stats(mesh.quality);
   entry.solve = modes.record;
@@ -146,9 +147,8 @@ TaskWriter run_modal_task(MPI_Comm group, const ModalSpec& spec, const ModalTask
   spdlog::info("modal: {} axes ({:.4f}, {:.4f}, {:.4f}): {} modes {:.1f}-{:.1f} Hz, {} dofs, {:.1f} s", task.name,
                entry.axes_m[0], entry.axes_m[1], entry.axes_m[2], entry.modes(), entry.frequencies_hz.front(),
                entry.frequencies_hz.back(), entry.mesh.dofs, entry.cost.total_s);
-  return [entry = std::move(entry), index = task.entry](io::File& file, const std::string& group_name) {
+  return [entry = std::move(entry)](io::File& file, const std::string& group_name) {
     io::write_modal_entry(file, group_name, entry);
-    io::write_attribute<std::uint32_t>(file, group_name, "entry", static_cast<std::uint32_t>(index));
   };
 }
 
@@ -171,7 +171,7 @@ model::ModalBank merge_modal_results(const ModalSpec& spec, const std::string& r
     if (record.state != io::TaskState::done) continue;
     auto file = io::File::open(path);
     auto entry = io::read_modal_entry(file, "/result");
-    if (entry.axes_m != a)
+    if (entry.axes_m != a || entry.sample != t.entry)
       throw InputError(fmt::format("{}: holds axes ({}, {}, {}), the sweep's task {} has ({}, {}, {})", path,
                                    entry.axes_m[0], entry.axes_m[1], entry.axes_m[2], t.name, a[0], a[1], a[2]));
     bank.entries.push_back(std::move(entry));

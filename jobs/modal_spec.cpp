@@ -84,6 +84,8 @@ ModalSpec make_modal_spec(const io::Config& config) {
   spec.max_iterations = config.integer("solver.max_iterations");
   spec.nev_per_shift = config.integer("solver.nev_per_shift");
   spec.coarse_edge_m = config.real("mesh.coarse_edge_m");
+  h.coarse_edge_m = spec.coarse_edge_m;
+  h.degenerate_gap = 1e-8;  // ModalSolveSettings' default: splits far below any mesh asymmetry
   spec.bounds = {config.real("mesh.max_radius_edge"), config.real("mesh.min_dihedral_deg"),
                  config.real("mesh.min_jacobian_ratio")};
   if (!(h.residual_limit > h.solver_tolerance))

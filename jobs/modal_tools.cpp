@@ -70,7 +70,7 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
                      "split by < {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", h.f_max_multiple,
                      h.elements_per_wavelength, h.min_ratio, h.cluster_gap, h.solver_tolerance, h.residual_limit,
                      h.ranks_per_task);
-  out += "  entry  a        b        c        modes  f_1 [Hz]   f_max [Hz]  dofs     max res   min dihedral  time [s]  "
+  out += "  entry  a        b        c        modes  f_1 [Hz]   last [Hz]   dofs     max res   min dihedral  time [s]  "
          "multiplicities (size x count)\n";
   for (std::size_t i = 0; i < bank.entries.size(); ++i) {
     const auto& e = bank.entries[i];

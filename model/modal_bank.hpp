@@ -27,7 +27,8 @@ struct ModalMeshStats {
 struct ModalSolveRecord {
   double lambda_lo = 0, lambda_hi = 0;     // the sliced interval of omega^2 [rad^2/s^2]
   std::int64_t below_lo = 0, below_hi = 0; // eigenvalues below each end, by inertia (below_lo: the 6 rigid motions)
-  std::int64_t found = 0;                  // modes the solve returned in the interval (= below_hi - below_lo)
+  std::int64_t found_in_interval = 0;      // modes the solve returned in [lambda_lo, lambda_hi] (= below_hi -
+                                           // below_lo); the entry keeps those from f_1 to f_max
   std::int64_t shifts = 0;                 // shifts factorised
   double first_mode_estimate_hz = 0;       // f_1 from the coarse pre-solve that set h and the interval
   std::string solver_options;              // the PETSc/SLEPc options of the solve
@@ -35,13 +36,14 @@ struct ModalSolveRecord {
 
 // Wall times and memory of an entry: provenance of one run, left out of the content hash.
 struct ModalEntryCost {
-  double mesh_s = 0, assembly_s = 0, estimate_s = 0, solve_s = 0, basis_s = 0, total_s = 0;
-  double factor_memory_mb = 0;  // MUMPS, largest rank, count-check factorisation
-  double memory_max_mb = 0;     // resident memory after the solve, largest rank
+  double mesh_s = 0, assembly_s = 0, estimate_s = 0, solve_s = 0, total_s = 0;  // solve_s: basis rule included
+  double factor_memory_mb = 0;  // MUMPS' INFOG(21) (10^6 bytes), largest rank, count-check factorisation
+  double memory_max_mb = 0;     // resident memory after the solve, largest rank (10^6 bytes)
   std::int32_t ranks = 0;
 };
 
 struct ModalEntry {
+  std::uint32_t sample = 0;                // index in the config's patch.samples (task eNNN)
   std::array<double, 3> axes_m{};          // semi-axes a <= b <= c, a^2 + b^2 + c^2 = 1
   std::vector<double> frequencies_hz;      // ascending, f_1 .. f_max
   std::vector<double> damping_ratios;      // the bank material's Rayleigh damping at each frequency
@@ -68,6 +70,8 @@ struct ModalBankHeader {
   double elements_per_wavelength = 0;  // h = shear wavelength at f_max / this
   double min_ratio = 0;                // smallest a/c of the sampled patch
   double cluster_gap = 0;              // relative frequency gap that separates multiplets
+  double degenerate_gap = 0;           // Ritz values closer than this get the reference-field basis
+  double coarse_edge_m = 0;            // h of the pre-solve that estimates f_1
   double solver_tolerance = 0;         // SLEPc's -eps_tol
   double residual_limit = 0;           // every mode's relative residual is at most this
   std::int32_t ranks_per_task = 0;     // ranks that solved each entry (shapes agree across it to ~1e-8)
@@ -75,7 +79,7 @@ struct ModalBankHeader {
 
 struct ModalBank {
   ModalBankHeader header;
-  std::vector<ModalEntry> entries;     // in the order of the config's samples; failed ones absent
+  std::vector<ModalEntry> entries;     // in the order of the config's samples; failed ones absent (/sweep)
   SweepStatus sweep;
 };
 

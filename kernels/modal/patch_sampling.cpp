@@ -3,6 +3,7 @@
 #include "kernels/modal/patch_sampling.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -25,10 +26,11 @@ constexpr int kMaxDivisions = 4096, kMaxLevel = 16;  // N <= 2^28: lattice sums 
 
 Edge edge_of(int p, int q) { return p < q ? Edge{p, q} : Edge{q, p}; }
 
+// The shortest text that reads back as x (what the user wrote, for a value from a config).
 std::string number(double x) {
-  std::ostringstream s;
-  s << std::setprecision(17) << x;
-  return s.str();
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, x).ptr;
+  return std::string(text, end);
 }
 
 void check_settings(const PatchSamplingSettings& s) {

@@ -67,7 +67,7 @@ std::vector<int> multiplet_sizes(const model::ModalEntry& e) {
 
 void expect_complete(const model::ModalEntry& e, double f_max_multiple, const char* label) {
   EXPECT_EQ(e.solve.below_lo, 6) << label << ": the rigid motions, and nothing else, below the interval";
-  EXPECT_EQ(e.solve.found, e.solve.below_hi - e.solve.below_lo) << label << ": found = inertia count";
+  EXPECT_EQ(e.solve.found_in_interval, e.solve.below_hi - e.solve.below_lo) << label << ": found = inertia count";
   ASSERT_GT(e.modes(), 0u);
   EXPECT_GE(e.frequencies_hz.back(), 0.99 * f_max_multiple * e.frequencies_hz.front()) << label;
   for (double r : e.relative_residuals) EXPECT_LE(r, 1e-8) << label;
