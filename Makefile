@@ -1,6 +1,7 @@
 # The two commands a new user runs: `make demo` and `make test`. Both install missing Debian
 # packages (cluster/install-deps.sh), configure with a CMake preset and build.
-#   make demo                 a 3-proxy PAN bank on 2 ranks (out/demo/bank.h5) and its summary
+#   make demo                 a 3-proxy PAN bank and a 3-ellipsoid modal bank on 2 ranks (out/demo/),
+#                             their summaries, and the PAN demo scene rendered
 #   make test                 every test (ctest), in build/$(PRESET), then `make fuzz`
 #   make fuzz                 the libFuzzer harnesses of the readers, 30 s each (preset fuzz, clang-14)
 #   make bench                Google Benchmark suite, JSON in out/bench/
@@ -34,6 +35,8 @@ demo: build
 	mpiexec -n 2 $(BUILD)/bin/clatter-bank pan -c configs/pan-demo.toml -o out/demo/bank.h5 --log-view
 	$(BUILD)/bin/clatter-bank info out/demo/bank.h5
 	$(BUILD)/bin/clatter-synth -i scenes/demo.json -b out/demo/bank.h5 -o out/demo/debris.wav
+	mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-demo.toml -o out/demo/modal.h5 --log-view
+	$(BUILD)/bin/clatter-bank info out/demo/modal.h5
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300

@@ -15,6 +15,10 @@ packages=(
   # PETSc/SLEPc (real, with MUMPS) for petsc/; TetGen for kernels/fem/ellipsoid_mesh.cpp; CGAL
   # not used by the build yet
   libpetsc-real3.18-dev libslepc-real3.18-dev libcgal-dev libtet1.5-dev
+  # an optimized single-threaded BLAS/LAPACK behind MUMPS (through Debian's libblas.so.3
+  # alternative): the reference BLAS factorizes a 35k-dof modal entry ~6x slower; serial, so
+  # MPI ranks do not oversubscribe cores with BLAS threads
+  libopenblas0-serial
   # small libraries the code uses
   libtoml11-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libsndfile1-dev
   # tests and benchmarks; clang-14 and its libFuzzer runtime (libclang_rt.fuzzer) for the fuzz preset

@@ -57,7 +57,13 @@ kernels::modal::FeatureBatch feature_batch(MPI_Comm world, const ModalSpec& spec
     std::vector<double> mine(points.size() * static_cast<std::size_t>(n), 0.0), all(mine.size());
     mpi::agree(world, [&] {
       for (std::size_t i = static_cast<std::size_t>(rank); i < points.size(); i += static_cast<std::size_t>(size)) {
-        const auto r = frequency_ratios(spec, points[i], n);
+        std::vector<double> r;
+        try {
+          r = frequency_ratios(spec, points[i], n);
+        } catch (const std::exception& e) {
+          throw std::runtime_error(fmt::format("modal-samples: ellipsoid ({:.6f}, {:.6f}, {:.6f}): {}", points[i][0],
+                                               points[i][1], points[i][2], e.what()));
+        }
         std::copy(r.begin(), r.end(), mine.begin() + static_cast<long>(i * static_cast<std::size_t>(n)));
       }
     });
@@ -105,7 +111,11 @@ Command add_modal_samples_command(CLI::App& parent) {
             const auto config = job_config(context.world, modal_schema(), *options);
             if (!config) return kExitOk;
             ModalSpec spec;
-            mpi::agree(context.world, [&] { spec = make_modal_spec(*config); });
+            mpi::agree(context.world, [&] {
+              io::Config sampling = *config;  // the samples are what this command makes: any will do here
+              sampling.set("patch.samples=[[0.5773502691896258, 0.5773502691896258, 0.5773502691896258]]");
+              spec = make_modal_spec(sampling);
+            });
             samples->sampling.min_ratio = spec.header.min_ratio;
             const petsc::Session petsc(context.world);
             kernels::modal::PatchSampling result;
