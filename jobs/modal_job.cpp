@@ -160,15 +160,10 @@ model::ModalBank merge_modal_results(const ModalSpec& spec, const std::string& r
   bank.sweep.sweep_id = io::sweep_id(config_toml);
   bank.sweep.tasks_total = static_cast<std::uint32_t>(tasks.size());
   for (const auto& t : tasks) {
-    const std::string path = io::task_path(results_dir, t.name);
-    const io::TaskRecord record = io::inspect_task(path, t.name, bank.sweep.sweep_id);
     const auto& a = spec.samples_m[t.entry];
     const std::string label = fmt::format("{} axes ({:.4f}, {:.4f}, {:.4f}) m", t.name, a[0], a[1], a[2]);
-    if (record.state == io::TaskState::foreign) throw foreign_task_error(path, record, config_toml);
-    if (record.state == io::TaskState::failed) bank.sweep.failed.push_back(label + ": " + record.reason);
-    if (record.state == io::TaskState::invalid) bank.sweep.failed.push_back(label + ": unreadable result: " + record.reason);
-    if (record.state == io::TaskState::missing) bank.sweep.missing.push_back(label);
-    if (record.state != io::TaskState::done) continue;
+    if (!task_done(results_dir, t.name, label, config_toml, bank.sweep)) continue;
+    const std::string path = io::task_path(results_dir, t.name);
     auto file = io::File::open(path);
     auto entry = io::read_modal_entry(file, "/result");
     if (entry.axes_m != a || entry.sample != t.entry)

@@ -46,16 +46,10 @@ model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results
   bank.sweep.sweep_id = io::sweep_id(config_toml);
   bank.sweep.tasks_total = static_cast<std::uint32_t>(tasks.size());
   for (const auto& t : tasks) {
-    const std::string path = io::task_path(results_dir, t.name);
-    const io::TaskRecord record = io::inspect_task(path, t.name, bank.sweep.sweep_id);
     const std::string label = fmt::format("{} (B, C) = ({:.4g}, {:.4g}) m, field {}", t.name, spec.proxies_bc_m[t.proxy][0],
                                           spec.proxies_bc_m[t.proxy][1], t.field);
-    if (record.state == io::TaskState::foreign) throw foreign_task_error(path, record, config_toml);
-    if (record.state == io::TaskState::failed) bank.sweep.failed.push_back(label + ": " + record.reason);
-    if (record.state == io::TaskState::invalid) bank.sweep.failed.push_back(label + ": unreadable result: " + record.reason);
-    if (record.state == io::TaskState::missing) bank.sweep.missing.push_back(label);
-    if (record.state != io::TaskState::done) continue;
-    auto file = io::File::open(path);
+    if (!task_done(results_dir, t.name, label, config_toml, bank.sweep)) continue;
+    auto file = io::File::open(io::task_path(results_dir, t.name));
     auto r = io::read_pan_task(file, "/result", spec.terms, bank.header.directions.size(), spec.length);
     if (r.proxy != t.proxy || r.field != t.field)
       throw InputError(fmt::format("{}: holds proxy {} field {}, expected {} field {}", file.path(), r.proxy, r.field,

@@ -291,6 +291,17 @@ void reduce_over_groups(MPI_Comm world, bool leader, SweepReport& report) {
 
 }  // namespace
 
+bool task_done(const std::string& results_dir, const std::string& name, const std::string& label,
+               const std::string& config_toml, model::SweepStatus& status) {
+  const std::string path = io::task_path(results_dir, name);
+  const io::TaskRecord record = io::inspect_task(path, name, status.sweep_id);
+  if (record.state == io::TaskState::foreign) throw foreign_task_error(path, record, config_toml);
+  if (record.state == io::TaskState::failed) status.failed.push_back(label + ": " + record.reason);
+  if (record.state == io::TaskState::invalid) status.failed.push_back(label + ": unreadable result: " + record.reason);
+  if (record.state == io::TaskState::missing) status.missing.push_back(label);
+  return record.state == io::TaskState::done;
+}
+
 std::string read_sweep_config(const std::string& results_dir) {
   const std::string path = manifest_path(results_dir);
   if (!fs::exists(path)) throw InputError(fmt::format("{}: not a sweep results folder (no sweep.toml)", results_dir));

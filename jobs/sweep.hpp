@@ -53,6 +53,11 @@ SweepReport run_sweep(MPI_Comm world, const SweepLocks& locks, const std::vector
 
 // The refusal of a task file that names another sweep: its path and both sweep ids.
 InputError foreign_task_error(const std::string& path, const io::TaskRecord& record, const std::string& config_toml);
+// What a merge finds for task `name`: true when its file is done (the caller reads its payload);
+// otherwise the task is added to `status` as failed (with its reason, labelled `label`) or
+// missing. A task file of another sweep is refused (foreign_task_error).
+bool task_done(const std::string& results_dir, const std::string& name, const std::string& label,
+               const std::string& config_toml, model::SweepStatus& status);
 // The config a results folder was made with (InputError if it has none).
 std::string read_sweep_config(const std::string& results_dir);
 

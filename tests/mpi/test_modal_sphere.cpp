@@ -15,6 +15,7 @@
 #include <numbers>
 #include <vector>
 
+#include "jobs/modal_fem.hpp"
 #include "kernels/fem/ellipsoid_mesh.hpp"
 #include "petsc/eigen.hpp"
 #include "petsc/session.hpp"
@@ -43,50 +44,14 @@ int rank_of(MPI_Comm comm) {
   return r;
 }
 
-struct Model {
-  Layout layout;
-  Matrix K, M;
-  std::vector<Vector> rigid;  // 3 translations, 3 rotations about the centre
-};
-
-// Rows split by whole nodes (3 dofs each); each rank adds the blocks of a contiguous share of elements.
-Model assemble(MPI_Comm comm, const Tet10Mesh& mesh) {
-  int size = 1;
-  MPI_Comm_size(comm, &size);
-  const int rank = rank_of(comm);
-  const auto n_nodes = static_cast<PetscInt>(mesh.nodes_m.cols());
-  const PetscInt local_nodes = n_nodes / size + (rank < n_nodes % size ? 1 : 0);
-  Layout layout(comm, 3 * n_nodes, 3 * local_nodes);
-  const auto n_elements = static_cast<long long>(mesh.elements.size());
-  const long long e_begin = n_elements * rank / size, e_end = n_elements * (rank + 1) / size;
-  const auto material = kernels::fem::IsotropicMaterial::from_youngs(kYoungs_pa, kPoisson);
-  std::vector<PetscInt> dofs;
-  std::vector<double> k_blocks, m_blocks;
-  using RowMajor = Eigen::Matrix<double, 30, 30, Eigen::RowMajor>;
-  for (long long e = e_begin; e < e_end; ++e) {
-    const auto& element = mesh.elements[static_cast<std::size_t>(e)];
-    kernels::fem::Tet10Coords x;
-    for (int i = 0; i < kernels::fem::kTet10Nodes; ++i) {
-      x.col(i) = mesh.nodes_m.col(element[i]);
-      for (int c = 0; c < 3; ++c) dofs.push_back(3 * element[i] + c);
-    }
-    const RowMajor k = kernels::fem::tet10_stiffness(x, material), m = kernels::fem::tet10_mass(x, kRho_kg_m3);
-    k_blocks.insert(k_blocks.end(), k.data(), k.data() + k.size());
-    m_blocks.insert(m_blocks.end(), m.data(), m.data() + m.size());
-  }
-  Pattern pattern(layout, dofs, 30);
-  Model model{layout, assemble_elements(pattern, dofs, k_blocks), assemble_elements(pattern, dofs, m_blocks), {}};
-  for (int mode = 0; mode < 6; ++mode) {
-    std::vector<double> v(static_cast<std::size_t>(layout.local_size()));
-    for (PetscInt row = layout.begin(); row < layout.end(); ++row) {
-      const Eigen::Vector3d p = mesh.nodes_m.col(row / 3);
-      const int c = static_cast<int>(row % 3);
-      const Eigen::Vector3d motion = mode < 3 ? Eigen::Vector3d::Unit(mode) : Eigen::Vector3d::Unit(mode - 3).cross(p);
-      v[static_cast<std::size_t>(row - layout.begin())] = motion(c);
-    }
-    model.rigid.emplace_back(layout, v);
-  }
-  return model;
+// The job's assembly (jobs/modal_fem.hpp): rows split by whole nodes, each rank the element blocks
+// of a contiguous share of elements.
+jobs::FemModel assemble(MPI_Comm comm, const Tet10Mesh& mesh) {
+  model::Material glass;
+  glass.youngs_pa = kYoungs_pa;
+  glass.poisson = kPoisson;
+  glass.rho_kg_m3 = kRho_kg_m3;
+  return jobs::assemble_fem(comm, mesh, glass);
 }
 
 double omega_rad_s(const reference::LambMode& mode) { return mode.omega_a_over_cs * kShearSpeed_m_s / kRadius_m; }
@@ -134,7 +99,7 @@ SphereRun solve_sphere(double h_m, double scale = 1.0) {
   kernels::fem::EllipsoidMesh mesh = kernels::fem::mesh_ellipsoid({{kRadius_m, kRadius_m, kRadius_m}, h_m});
   mesh.mesh.nodes_m *= scale;
   const auto t1 = clock::now();
-  Model model = assemble(MPI_COMM_WORLD, mesh.mesh);
+  const jobs::FemModel model = assemble(MPI_COMM_WORLD, mesh.mesh);
   const auto t2 = clock::now();
   const Reference ref = lamb_reference();
   SphereRun run;
