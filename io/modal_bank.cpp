@@ -220,6 +220,7 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   write_attribute<double>(file, "/settings", "solver_tolerance", h.solver_tolerance);
   write_attribute<double>(file, "/settings", "residual_limit", h.residual_limit);
   write_attribute<std::int32_t>(file, "/settings", "ranks_per_task", h.ranks_per_task);
+  write_attribute(file, "/settings", "solver_libraries", h.solver_libraries);
   std::vector<double> axes;
   for (const auto& e : bank.entries) axes.insert(axes.end(), e.axes_m.begin(), e.axes_m.end());
   create_group(file, "/entries");
@@ -258,6 +259,7 @@ model::ModalBank read_modal_bank(const std::string& path) {
   h.solver_tolerance = read_attribute<double>(file, "/settings", "solver_tolerance");
   h.residual_limit = read_attribute<double>(file, "/settings", "residual_limit");
   h.ranks_per_task = read_attribute<std::int32_t>(file, "/settings", "ranks_per_task");
+  h.solver_libraries = read_string_attribute(file, "/settings", "solver_libraries");
   Dims dims;
   const auto axes = read_dataset<double>(file, "/entries/axes_m", {-1, 3}, "m", &dims);
   for (std::size_t i = 0; i < dims[0]; ++i) {

@@ -10,6 +10,7 @@
 #include "core/stage_log.hpp"
 #include "jobs/command.hpp"
 #include "jobs/run_options.hpp"
+#include "petsc/session.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/log.hpp"
 #include "mpi/session.hpp"
@@ -25,7 +26,9 @@ int bank_main(mpi::Session& session, int argc, char** argv) {
                "Run under mpirun/srun for more than one rank. Exit codes: 0 done, 1 run-time failure, 2 bad input,\n"
                "3 interrupted (SIGTERM/SIGINT; run again with --resume), 4 some sweep tasks failed.",
                "clatter-bank"};
-  app.set_version_flag("--version", io::version_text("clatter-bank"));
+  // The modal bank's solvers too (run-time versions; no PETSc initialization needed to ask).
+  app.set_version_flag("--version", io::version_text("clatter-bank") + "  solvers:  " + petsc::Session::versions() +
+                                         " (MUMPS through PETSc)");
   app.require_subcommand(1);
   app.fallthrough();  // global options may follow the subcommand
   jobs::GlobalOptions global;

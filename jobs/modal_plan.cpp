@@ -72,6 +72,9 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
   if (cal == tasks.size()) throw InputError("plan: no entry of the sweep meshes; see mesh.* and patch.samples");
   const auto entry = build_modal_entry(MPI_COMM_SELF, spec, cal);
   const double cal_s = entry.cost.total_s, cal_modes = static_cast<double>(std::max<std::size_t>(entry.modes(), 1));
+  // The coarse mesh undercounts the top of the range (its frequencies are high): scaled by what
+  // the calibration entry's fine solve found against its coarse count.
+  const double count_scale = cal_modes / static_cast<double>(std::max<long long>(entries[cal].modes, 1));
   const double cal_dofs = static_cast<double>(entry.mesh.dofs), cal_memory = entry.cost.memory_max_mb;
   const double group_speedup = std::pow(o.ranks_per_task, kGroupSpeedupExponent);
   PlanEstimate e;
@@ -81,6 +84,7 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
       e.task_s.push_back(0);
       continue;
     }
+    p.modes = std::llround(static_cast<double>(p.modes) * count_scale);
     const double dofs_ratio = static_cast<double>(p.dofs) / cal_dofs;
     p.task_s = cal_s * static_cast<double>(p.modes) / cal_modes * std::pow(dofs_ratio, kDofsExponent) / group_speedup;
     p.memory_mb = cal_memory * std::pow(dofs_ratio, kMemoryExponent) / o.ranks_per_task;
@@ -92,6 +96,7 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
   e.nodes = (o.ranks + cores - 1) / cores;
   const int groups = o.ranks / o.ranks_per_task;
   const double wall_s = list_schedule_s(e.task_s, groups);
+  e.signal_lead_s = static_cast<int>(std::max(120.0, 1.2 * *std::max_element(e.task_s.begin(), e.task_s.end()) + 60));
   const auto& m = spec.header.material;
   e.report = fmt::format("plan: {}: modal bank of {} ellipsoids, {} (c_s = {:.1f} m/s), modes to {} f_1\n",
                          o.config_path.empty() ? "defaults" : o.config_path, tasks.size(), m.name, m.shear_speed_m_s(),

@@ -15,7 +15,9 @@
 namespace clatter::jobs {
 
 BankSweep modal_bank_sweep(const io::Config& config) {
-  const auto spec = std::make_shared<const ModalSpec>(make_modal_spec(config));
+  ModalSpec made = make_modal_spec(config);
+  made.header.solver_libraries = petsc::Session::versions();
+  const auto spec = std::make_shared<const ModalSpec>(std::move(made));
   const auto tasks = std::make_shared<const std::vector<ModalTask>>(modal_tasks(*spec));
   BankSweep sweep;
   sweep.kind = "modal";

@@ -62,8 +62,9 @@ std::string sweep_command(const PlanOptions& o, const std::string& results, cons
                      o.binary, o.kind, o.config_path, o.out, results, o.ranks_per_task, extra);
 }
 
-// Slurm signals the ranks themselves 120 s before the limit (--signal=TERM@120, no B: a signal to
-// srun would make it end the step with SIGKILL after KillWait); they stop cleanly and exit 3. The
+// Slurm signals the ranks themselves a lead before the limit (--signal=TERM@LEAD: 120 s, or for a
+// modal plan its longest task; no B: a signal to srun would make it end the step with SIGKILL
+// after KillWait); they stop cleanly and exit 3. The
 // job then requeues itself, and --resume makes every start skip the verified finished tasks.
 std::string run_block(const std::string& command) {
   return fmt::format(R"(export OMP_NUM_THREADS=1
@@ -178,13 +179,13 @@ std::string write_sbatch_scripts(const io::Config& config, const PlanOptions& o,
       mine.push_back(e.task_s[t]);
     slowest_element_s = std::max(slowest_element_s, list_schedule_s(mine, groups));
   }
-  const double job_limit_s = 1.5 * slowest_element_s + 600;
+  const double job_limit_s = 1.5 * slowest_element_s + 600 + e.signal_lead_s;
   write_script(o.sbatch,
                header + fmt::format(R"(#SBATCH --job-name=clatter-{}{}
 {}#SBATCH --nodes={}
 #SBATCH --ntasks={}
 #SBATCH --time={}
-#SBATCH --signal=TERM@120
+#SBATCH --signal=TERM@{}
 #SBATCH --requeue
 #SBATCH --open-mode=append
 #SBATCH --output=clatter-{}-{}.out
@@ -194,7 +195,7 @@ exit "$rc"
 )",
                                     o.kind, array ? "-array" : "",
                                     array ? fmt::format("#SBATCH --array=0-{}\n", o.array - 1) : "", e.nodes, o.ranks,
-                                    clock_text(job_limit_s), o.kind, array ? "%A_%a" : "%j",
+                                    clock_text(job_limit_s), e.signal_lead_s, o.kind, array ? "%A_%a" : "%j",
                                     run_block(sweep_command(
                                         job, results, array ? " --slice ${SLURM_ARRAY_TASK_ID}/${SLURM_ARRAY_TASK_COUNT}" : "")),
                                     array ? "${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}" : "$SLURM_JOB_ID"));

@@ -31,6 +31,9 @@ struct PlanEstimate {
   std::string report;
   std::vector<double> task_s;
   int nodes = 1;
+  // Slurm's SIGTERM this long before the limit: a task polls it only between its stages, so the
+  // lead must let the longest one finish and be written.
+  int signal_lead_s = 120;
 };
 
 // Runs on rank 0 (the calibration solve is serial); returns the text to print.

@@ -75,6 +75,7 @@ struct ModalBankHeader {
   double solver_tolerance = 0;         // SLEPc's -eps_tol
   double residual_limit = 0;           // every mode's relative residual is at most this
   std::int32_t ranks_per_task = 0;     // ranks that solved each entry (shapes agree across it to ~1e-8)
+  std::string solver_libraries;        // e.g. "PETSc 3.18.5, SLEPc 3.18.2": the last bits depend on them
 };
 
 struct ModalBank {
