@@ -7,8 +7,10 @@
 //       one of ours, on the ellipsoid, and the boundary mid-nodes can be put on the surface;
 //   Q   quiet: nothing on stdout (a library prints no progress into a bank job's log);
 //   q   quality refinement: radius-edge ratio <= r and smallest dihedral angle >= d degrees;
-//   a   volume bound v = h^3 / (6 sqrt 2), the regular tetrahedron of edge h, so the interior is as
-//       fine as the surface.
+//   a   volume bound v = h^3 / (6 sqrt 2), the regular tetrahedron of edge h: the interior is h,
+//       and -q grades it from the curvature-refined surface to h (each point it inserts is a bad
+//       tetrahedron's circumcentre, so sizes grow away from the surface no faster than the
+//       radius-edge bound allows); no size function is needed.
 // No -o2: TetGen's second-order nodes sit at straight midpoints; the curved ones are made here.
 #include "kernels/fem/ellipsoid_mesh.hpp"
 
@@ -23,6 +25,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "kernels/fem/ellipsoid_parts.hpp"
 #include "kernels/fem/mesh_quality.hpp"
 
 namespace clatter::kernels::fem {
@@ -30,53 +33,20 @@ namespace {
 
 using P3 = std::array<double, 3>;
 
+constexpr int kRepairRounds = 6;
+
 // Tetrahedra as vertex quadruples over `points` (TetGen's output; the input points come first).
 struct LinearMesh {
   std::vector<P3> points;
   std::vector<std::array<int, 4>> tets;
 };
 
-// One point under each surface vertex, half its mean edge length deep along the inward normal, skipped where it would come closer than that to one already placed (near a sharp tip).
-// Without them TetGen, which may not split the preserved surface (-Y), leaves "caps": tetrahedra
-// on four surface vertices, only a sagitta thick, which fold once their mid-nodes are curved. A
-// point under a cap lies inside its circumsphere (about the osculating sphere) where the surface's
-// curvature radius exceeds the depth, so Delaunay insertion removes the cap there. Where it does
-// not (h above the curvature radius: the rim of a flat ellipsoid), caps stay and fold when curved,
-// and the mesh is refused (MeshError).
-std::vector<P3> inner_layer(const SurfaceTriangulation& surface, const P3& r) {
-  std::vector<double> edge_sum(surface.vertices_m.size(), 0);
-  std::vector<int> edge_count(surface.vertices_m.size(), 0);
-  for (const auto& f : surface.faces)
-    for (int k = 0; k < 3; ++k) {
-      const P3 &a = surface.vertices_m[f[k]], &b = surface.vertices_m[f[(k + 1) % 3]];
-      const double len = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
-      edge_sum[f[k]] += len;
-      ++edge_count[f[k]];
-    }
-  std::vector<P3> layer;
-  std::vector<double> spacing;
-  for (std::size_t v = 0; v < surface.vertices_m.size(); ++v) {
-    const P3& x = surface.vertices_m[v];
-    const double depth = 0.5 * edge_sum[v] / edge_count[v];
-    const P3 n{x[0] / (r[0] * r[0]), x[1] / (r[1] * r[1]), x[2] / (r[2] * r[2])};
-    const double norm = std::hypot(n[0], n[1], n[2]);
-    const P3 p{x[0] - depth * n[0] / norm, x[1] - depth * n[1] / norm, x[2] - depth * n[2] / norm};
-    bool crowded = false;
-    for (std::size_t q = 0; q < layer.size() && !crowded; ++q)
-      crowded = std::hypot(p[0] - layer[q][0], p[1] - layer[q][1], p[2] - layer[q][2]) < std::min(depth, spacing[q]);
-    if (!crowded) {
-      layer.push_back(p);
-      spacing.push_back(depth);
-    }
-  }
-  return layer;
-}
-
-LinearMesh run_tetgen(const SurfaceTriangulation& surface, const EllipsoidMeshSettings& s, double h) {
+LinearMesh run_tetgen(const SurfaceTriangulation& surface, const std::vector<P3>& inner, const EllipsoidMeshSettings& s,
+                      double h) {
   tetgenio in, out;
   in.firstnumber = 0;
   std::vector<P3> points = surface.vertices_m;
-  for (const P3& p : inner_layer(surface, s.semi_axes_m)) points.push_back(p);
+  points.insert(points.end(), inner.begin(), inner.end());
   in.numberofpoints = static_cast<int>(points.size());
   in.pointlist = new REAL[3 * points.size()];
   for (std::size_t v = 0; v < points.size(); ++v)
@@ -160,7 +130,7 @@ EllipsoidMesh quadratic_mesh(LinearMesh& m, const P3& r, std::size_t n_surface_p
     const auto [it, inserted] = mid.try_emplace(edge_key(a, b), static_cast<int>(nodes.size()));
     if (inserted) {
       const P3 c{0.5 * (nodes[a][0] + nodes[b][0]), 0.5 * (nodes[a][1] + nodes[b][1]), 0.5 * (nodes[a][2] + nodes[b][2])};
-      nodes.push_back(on_surface.count(edge_key(a, b)) ? onto_ellipsoid(r, c) : c);
+      nodes.push_back(on_surface.count(edge_key(a, b)) ? nearest_on_ellipsoid(r, c) : c);
     }
     return it->second;
   };
@@ -198,11 +168,26 @@ EllipsoidMesh mesh_ellipsoid(const EllipsoidMeshSettings& s, const EllipsoidMesh
   if (!(r[0] > 0 && r[1] > 0 && r[2] > 0 && s.edge_length_m > 0))
     throw std::invalid_argument("mesh_ellipsoid: semi-axes and edge length must be positive");
   const double h = std::min(s.edge_length_m, 2 * std::min({r[0], r[1], r[2]}) / 3);
-  const SurfaceTriangulation surface = ellipsoid_surface(r, h);
-  LinearMesh linear = run_tetgen(surface, s, h);
-  for (std::size_t v = 0; v < surface.vertices_m.size(); ++v)
-    if (linear.points[v] != surface.vertices_m[v]) throw MeshError("TetGen moved a surface point");
-  EllipsoidMesh out = quadratic_mesh(linear, r, surface.vertices_m.size());
+  SurfaceTriangulation surface = ellipsoid_surface(r, h, s.spacing_per_curvature_radius);
+  const EdgeRule rule = surface_rule(r, h, s.spacing_per_curvature_radius);
+  MeshRepairs repairs;
+  EllipsoidMesh out;
+  // An element that breaks the bounds (a fold: a cap the layer missed, or one TetGen made to
+  // recover the surface; a bad shape TetGen could not mend without cutting the surface) is
+  // repaired and TetGen runs again: a few rounds; most meshes need none, and a mesh still bad
+  // after them is refused below.
+  for (int round = 0;; ++round) {
+    std::vector<P3> inner;
+    for (const P3& p : inner_layer(surface, r))
+      if (!repairs.dropped.count(p)) inner.push_back(p);
+    for (const P3& p : repairs.extra)
+      if (!repairs.dropped.count(p)) inner.push_back(p);
+    LinearMesh linear = run_tetgen(surface, inner, s, h);
+    for (std::size_t v = 0; v < surface.vertices_m.size(); ++v)
+      if (linear.points[v] != surface.vertices_m[v]) throw MeshError("TetGen moved a surface point");
+    out = quadratic_mesh(linear, r, surface.vertices_m.size());
+    if (round == kRepairRounds || !repair_mesh(out, rule, bounds, inner, surface, repairs)) break;
+  }
   out.quality = mesh_quality(out.mesh);
   out.quality.edge_length_m = h;
   check_bounds(out.quality, bounds);

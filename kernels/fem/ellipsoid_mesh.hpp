@@ -14,11 +14,19 @@
 
 namespace clatter::kernels::fem {
 
+// The surface spacing follows the curvature: a surface edge of length L is cut while its mid-node
+// moves onto the ellipsoid by more than k/8 min(L, 1.69 k T), T the chord through the body along
+// the normal (the local thickness); that is L <= k R where the body is thick (R the curvature
+// radius along the edge) and L <= 1.3 k sqrt(R T) where it is thin, and edges stay within 1.5 h.
+// kernels/fem/surface_sizing.cpp argues the rule, tests/unit/test_ellipsoid_mesh.cpp measures it.
+inline constexpr double kSpacingPerCurvatureRadius = 1.0;  // k
+
 struct EllipsoidMeshSettings {
   std::array<double, 3> semi_axes_m{1, 1, 1};  // a, b, c
   double edge_length_m = 0.25;                 // target h; capped at (2 min axis)/3: 3 edges through the thinnest
   double max_radius_edge = 1.5;                // TetGen's -q bound (circumradius / shortest edge)
   double min_dihedral_deg = 12.0;              // TetGen's -q bound on the smallest dihedral angle
+  double spacing_per_curvature_radius = kSpacingPerCurvatureRadius;  // k above; scale it with h to refine all
 };
 
 // What a mesh must satisfy to be used; looser than the switches because TetGen cannot split the
@@ -55,9 +63,18 @@ struct SurfaceTriangulation {
   std::vector<std::array<double, 3>> vertices_m;
   std::vector<std::array<int, 3>> faces;
 };
-SurfaceTriangulation ellipsoid_surface(const std::array<double, 3>& semi_axes_m, double edge_length_m);
+SurfaceTriangulation ellipsoid_surface(const std::array<double, 3>& semi_axes_m, double edge_length_m,
+                                       double spacing_per_curvature_radius = kSpacingPerCurvatureRadius);
 
 // The point of the ellipsoid on the ray from its centre through p (p != 0).
 std::array<double, 3> onto_ellipsoid(const std::array<double, 3>& semi_axes_m, const std::array<double, 3>& p_m);
+
+// The point of the ellipsoid nearest to p, which lies near it (closer than the curvature radius):
+// where a mid-node goes. Unlike the ray from the centre, it moves a point along the normal only,
+// which on a cigar's side is not the ray's direction.
+std::array<double, 3> nearest_on_ellipsoid(const std::array<double, 3>& semi_axes_m, const std::array<double, 3>& p_m);
+
+// The smallest principal curvature radius of the ellipsoid at x, a point on it.
+double min_curvature_radius_m(const std::array<double, 3>& semi_axes_m, const std::array<double, 3>& x_m);
 
 }  // namespace clatter::kernels::fem

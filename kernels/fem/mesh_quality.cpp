@@ -62,6 +62,19 @@ double jacobian_ratio(const Tet10Coords& x) {
   return hi > 0 ? lo / hi : -1;
 }
 
+ElementQuality element_quality(const Tet10Coords& x) {
+  const Vertices v = x.leftCols<4>();
+  ElementQuality q;
+  q.radius_edge = radius_edge(v);
+  q.min_dihedral_deg = 180;
+  for (double angle : dihedral_deg(v)) {
+    q.min_dihedral_deg = std::min(q.min_dihedral_deg, angle);
+    q.max_dihedral_deg = std::max(q.max_dihedral_deg, angle);
+  }
+  q.jacobian_ratio = jacobian_ratio(x);
+  return q;
+}
+
 MeshQuality mesh_quality(const Tet10Mesh& mesh) {
   MeshQuality q;
   q.elements = static_cast<long long>(mesh.elements.size());
@@ -73,15 +86,12 @@ MeshQuality mesh_quality(const Tet10Mesh& mesh) {
   for (const auto& e : mesh.elements) {
     Tet10Coords x;
     for (int i = 0; i < kTet10Nodes; ++i) x.col(i) = mesh.nodes_m.col(e[i]);
-    const Vertices v = x.leftCols<4>();
-    const double rho = radius_edge(v);
-    q.max_radius_edge = std::max(q.max_radius_edge, rho);
-    sum_radius_edge += rho;
-    for (double angle : dihedral_deg(v)) {
-      q.min_dihedral_deg = std::min(q.min_dihedral_deg, angle);
-      q.max_dihedral_deg = std::max(q.max_dihedral_deg, angle);
-    }
-    q.min_jacobian_ratio = std::min(q.min_jacobian_ratio, jacobian_ratio(x));
+    const ElementQuality eq = element_quality(x);
+    q.max_radius_edge = std::max(q.max_radius_edge, eq.radius_edge);
+    sum_radius_edge += eq.radius_edge;
+    q.min_dihedral_deg = std::min(q.min_dihedral_deg, eq.min_dihedral_deg);
+    q.max_dihedral_deg = std::max(q.max_dihedral_deg, eq.max_dihedral_deg);
+    q.min_jacobian_ratio = std::min(q.min_jacobian_ratio, eq.jacobian_ratio);
   }
   if (q.elements > 0) q.mean_radius_edge = sum_radius_edge / static_cast<double>(q.elements);
   return q;

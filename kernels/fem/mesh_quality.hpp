@@ -20,4 +20,10 @@ MeshQuality mesh_quality(const Tet10Mesh& mesh);
 // min det J / max det J over the samples above, for one element; <= 0 when it folds.
 double jacobian_ratio(const Tet10Coords& x_m);
 
+// One element's share of the statistics above.
+struct ElementQuality {
+  double radius_edge = 0, min_dihedral_deg = 0, max_dihedral_deg = 0, jacobian_ratio = 0;
+};
+ElementQuality element_quality(const Tet10Coords& x_m);
+
 }  // namespace clatter::kernels::fem
