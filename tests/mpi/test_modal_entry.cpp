@@ -69,7 +69,12 @@ void expect_complete(const model::ModalEntry& e, double f_max_multiple, const ch
   EXPECT_EQ(e.solve.below_lo, 6) << label << ": the rigid motions, and nothing else, below the interval";
   EXPECT_EQ(e.solve.found_in_interval, e.solve.below_hi - e.solve.below_lo) << label << ": found = inertia count";
   ASSERT_GT(e.modes(), 0u);
-  EXPECT_GE(e.frequencies_hz.back(), 0.99 * f_max_multiple * e.frequencies_hz.front()) << label;
+  // Every mode to k f_1 is kept: the count-checked interval reaches beyond (2 pi k f_1)^2 and
+  // every found mode below it is stored (the last stored is the last below k f_1, or the end of
+  // the multiplet straddling it).
+  const double omega_max = 2 * std::numbers::pi * f_max_multiple * e.frequencies_hz.front();
+  EXPECT_GE(e.solve.lambda_hi, omega_max * omega_max) << label;
+  EXPECT_LE(e.frequencies_hz.back(), f_max_multiple * e.frequencies_hz.front() * 1.02) << label;
   for (double r : e.relative_residuals) EXPECT_LE(r, 1e-8) << label;
   EXPECT_EQ(e.shapes.size(), e.modes() * e.surface_nodes_m.size() * 3);
 }
