@@ -9,8 +9,8 @@
 namespace clatter::kernels::fem {
 
 // The surface refinement's rule (surface_sizing.cpp, where it is argued): an edge is too coarse
-// if longer than max_edge_m or if its sagitta exceeds k/8 min(L, k T), T = normal_chord_m at its
-// midpoint's nearest point on the ellipsoid.
+// if longer than max_edge_m or if its sagitta exceeds k/8 min(L, 1.69 k T), T = normal_chord_m at
+// its midpoint's nearest point on the ellipsoid. (refine_surface adds an isotropy condition.)
 struct EdgeRule {
   std::array<double, 3> semi_axes_m;
   double max_edge_m;
@@ -33,8 +33,9 @@ void bisect_surface_edges(SurfaceTriangulation& s, const EdgeRule& rule, const s
 // The rule ellipsoid_surface refines to (ellipsoid_surface.cpp).
 EdgeRule surface_rule(const std::array<double, 3>& semi_axes_m, double edge_length_m, double spacing_per_curvature_radius);
 
-// Edge flips and smoothing that raise the triangles' smallest angles, leaving no edge too coarse
-// that was not (surface_improve.cpp); the vertices stay on the ellipsoid and their count is kept.
+// Edge flips and smoothing that raise the triangles' smallest angles (surface_improve.cpp); the
+// smoothing turns no edge too coarse, a flip may (refine again after). The vertices stay on the
+// ellipsoid and their count is kept.
 void improve_surface(SurfaceTriangulation& s, const EdgeRule& rule);
 
 // Flips the surface edge a-b to the other diagonal of its two faces' quadrilateral; false where

@@ -1,7 +1,7 @@
 // Edge flips and smoothing of the ellipsoid's surface triangulation (no TetGen here).
 //
 // Why: the boundary tetrahedra keep the surface triangles (TetGen -Y), so a needle triangle makes a
-// bad tetrahedron that -q cannot repair. The smoothed octahedron or box has them where its
+// bad tetrahedron that -q cannot repair. The smoothed octahedron has them where its
 // topology does not fit the shape (the rim of a flat ellipsoid), and bisection may halve a
 // triangle's angles. Flips towards the Delaunay triangulation and a size-weighted smoothing fix
 // both without adding vertices.
@@ -73,9 +73,10 @@ void replace_face(EdgeFaces& e, int a, int b, int from, int to) {
 }
 
 // Flips edge k of face f (a, b, c) with the face g (b, a, d) across it, to (a, d, c) and (d, b, c),
-// when the angles facing the edge sum above pi (not Delaunay), the new edge is not there yet,
-// neither end drops to three edges, the smaller of the four angles grows and the new edge is
-// not too coarse for the rule.
+// when the angles facing the edge sum above pi (not Delaunay), the new edge is not there yet and
+// crosses no coordinate plane, neither end drops below four edges (a vertex of three is the corner
+// of a tetrahedron on three boundary faces, which folds when curved) and the smaller of the four
+// angles grows.
 bool try_flip(SurfaceTriangulation& s, const EdgeRule& rule, EdgeFaces& e, std::vector<int>& valence, int f, int k) {
   const P3& r = rule.semi_axes_m;
   const Face fa = s.faces[f];

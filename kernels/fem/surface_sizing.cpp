@@ -1,15 +1,16 @@
 // Curvature-adaptive refinement of the ellipsoid's surface triangulation (no TetGen here).
 //
 // The rule, per edge of length L: the sagitta s (how far its mid-node moves from the chord's
-// midpoint onto the ellipsoid) at most k/8 min(L, k T), T the chord through the body along the
-// normal there (the local thickness). Why: TetGen may not split the preserved surface (-Y), so
+// midpoint onto the ellipsoid) at most k/8 min(L, kThin^2 k T), T the chord through the body along
+// the normal there (the local thickness); and no edge much longer than its neighbours' (isotropy,
+// below), none above 1.5 h. Why: TetGen may not split the preserved surface (-Y), so
 // the boundary tetrahedra keep the surface's edges, and a curved element folds (det J <= 0) once
 // its mid-node moves by a sizeable part of its height, which is about L in a thick body and at
 // most T in a thin one. On a sphere s = L^2 / (8 R), so the rule is the suggested L <= k R there;
-// where the body is thin it is L <= k sqrt(R T) instead, which is what keeps the rim of a flat
-// ellipsoid affordable: at the rim's parabolic edge (apex radius R0 = c^2/a) an edge of length L
-// from the apex has s/T = 1/8 whatever L, while k R0 there would ask for edges of c^2/a all along
-// the rim (a 1:20:20 one: 2500 of them per row). Measuring s instead of bounding it by the
+// where the body is thin it is L <= kThin k sqrt(R T) instead, which is what keeps the rim of a
+// flat ellipsoid affordable: at the rim's parabolic edge (apex radius R0 = c^2/a) an edge of
+// length L from the apex has s/T = sqrt(2)/8 whatever L, while k R0 there would ask for edges of
+// c^2/a all along the rim (a 1:20:20 one: 2500 of them per row). Measuring s instead of bounding it by the
 // smallest curvature radius also asks nothing where the curvature is high across an edge's
 // direction but not along it (a cigar's waist, along its axis).
 // Why bisection: longest-edge bisection keeps the triangles' angles bounded below (Rivara) and
@@ -105,7 +106,7 @@ std::vector<char> marked_edges(const SurfaceTriangulation& s, const EdgeTable& t
   // Isotropy: where the rule allows long edges one way (along a flat ellipsoid's rim, with little
   // curvature) but short ones another (across it), rows of slivers would be the faces of
   // tetrahedra TetGen cannot improve (-Y). Each edge tells the curvature radius along it, R =
-  // L^2 / (8 s), hence the length L* = k min(R, sqrt(R T)) the rule allows that way; an edge
+  // L^2 / (8 s), hence the length L* = k min(R, kThin sqrt(R T)) the rule allows that way; an edge
   // longer than kIsotropy times the least L* at either end is cut too.
   std::vector<double> allowed(s.vertices_m.size(), rule.max_edge_m);
   for (std::size_t e = 0; e < t.ends.size(); ++e) {

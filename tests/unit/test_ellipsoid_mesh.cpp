@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <ostream>
 #include <string>
 
 #include "kernels/fem/ellipsoid_mesh.hpp"
@@ -149,6 +150,10 @@ struct Shape {
   Axes ratio;
   double h_m;
 };
+
+void PrintTo(const Shape& shape, std::ostream* os) {
+  *os << shape.ratio[0] << ':' << shape.ratio[1] << ':' << shape.ratio[2] << " h " << shape.h_m << " m";
+}
 
 void check_shape(const Shape& shape) {
   const Axes r = unit_axes(shape.ratio);
