@@ -27,9 +27,9 @@ double since(clock_type::time_point t0) { return std::chrono::duration<double>(c
 kernels::fem::EllipsoidMesh mesh_or_fail(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m) {
   Stage stage("mesh");
   try {
-    return kernels::fem::mesh_ellipsoid({axes, h_m}, spec.bounds);
+    return mesh_entry(spec, axes, h_m);
   } catch (const std::exception& e) {
-    throw TaskFailure(fmt::format("mesh at h = {:.4g} m: {}", h_m, e.what()));
+    throw TaskFailure(e.what());
   }
 }
 
@@ -69,6 +69,20 @@ void extract_surface(const kernels::fem::EllipsoidMesh& mesh, model::ModalEntry&
 }
 
 }  // namespace
+
+kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m) {
+  std::string reasons;
+  for (double factor : {1.0, 0.7, 0.5}) {
+    try {
+      kernels::fem::EllipsoidMeshSettings settings{axes, factor * h_m};
+      settings.spacing_per_curvature_radius *= factor;  // the cap 2a/3 may fix h: refine the surface too
+      return kernels::fem::mesh_ellipsoid(settings, spec.bounds);
+    } catch (const kernels::fem::MeshError& e) {
+      reasons += fmt::format("{}at h = {:.4g} m: {}", reasons.empty() ? "" : "; ", factor * h_m, e.what());
+    }
+  }
+  throw kernels::fem::MeshError(fmt::format("no mesh within the quality bounds ({})", reasons));
+}
 
 double modal_edge_length_m(const ModalSpec& spec, double f1_hz) {
   return spec.header.material.shear_speed_m_s() / (spec.header.f_max_multiple * f1_hz) /

@@ -25,6 +25,12 @@ TaskWriter run_modal_task(MPI_Comm group, const ModalSpec& spec, const ModalTask
 model::ModalBank merge_modal_results(const ModalSpec& spec, const std::string& results_dir,
                                      const std::string& config_toml);
 
+// The ellipsoid's mesh at edge length h_m, or, when it breaks the quality bounds, at 0.7 and then
+// 0.5 times both h_m and the surface spacing per curvature radius (a finer surface resolves the
+// curvature that folded; h alone may be held by the thickness cap); throws a MeshError
+// with every attempt's reason. Deterministic, so every rank of a group gets the same mesh.
+kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m);
+
 // The edge length that resolves the shear wavelength at f_max: c_s / f_max / elements_per_wavelength.
 double modal_edge_length_m(const ModalSpec& spec, double first_frequency_hz);
 

@@ -40,7 +40,7 @@ EntryPlan plan_entry(const ModalSpec& spec, std::size_t i) {
   const auto& axes = spec.samples_m[i];
   const auto& material = spec.header.material;
   try {
-    const auto coarse = kernels::fem::mesh_ellipsoid({axes, spec.coarse_edge_m}, spec.bounds);
+    const auto coarse = mesh_entry(spec, axes, spec.coarse_edge_m);
     const FemModel model = assemble_fem(MPI_COMM_SELF, coarse.mesh, material);
     ModalSolveSettings settings;
     settings.tolerance = spec.solver_tolerance;
@@ -49,7 +49,7 @@ EntryPlan plan_entry(const ModalSpec& spec, std::size_t i) {
     p.modes = petsc::eigenvalues_below(model.K, model.M, k * k * lambda1 * 1.0001) - 6;
     p.f1_hz = std::sqrt(lambda1) / (2 * std::numbers::pi);
     p.h_m = modal_edge_length_m(spec, p.f1_hz);
-    p.dofs = kernels::fem::mesh_ellipsoid({axes, p.h_m}, spec.bounds).quality.dofs;
+    p.dofs = mesh_entry(spec, axes, p.h_m).quality.dofs;
   } catch (const std::exception& e) {
     p.failure = e.what();
   }

@@ -16,6 +16,7 @@
 #include "core/errors.hpp"
 #include "jobs/command.hpp"
 #include "jobs/modal_fem.hpp"
+#include "jobs/modal_job.hpp"
 #include "jobs/modal_solve.hpp"
 #include "jobs/modal_spec.hpp"
 #include "jobs/run_options.hpp"
@@ -33,7 +34,7 @@ struct SamplesOptions {
 
 // f_2/f_1 .. f_{n+1}/f_1 of one ellipsoid on the coarse mesh (this rank alone).
 std::vector<double> frequency_ratios(const ModalSpec& spec, const kernels::modal::Axes& axes, int n) {
-  const auto mesh = kernels::fem::mesh_ellipsoid({axes, spec.coarse_edge_m}, spec.bounds);
+  const auto mesh = mesh_entry(spec, axes, spec.coarse_edge_m);
   const FemModel model = assemble_fem(MPI_COMM_SELF, mesh.mesh, spec.header.material);
   const auto reference = reference_fields(model.layout, mesh.mesh, axes);
   ModalSolveSettings settings;
