@@ -75,7 +75,8 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
   // The coarse mesh undercounts the top of the range (its frequencies are high): scaled by what
   // the calibration entry's fine solve found against its coarse count.
   const double count_scale = cal_modes / static_cast<double>(std::max<long long>(entries[cal].modes, 1));
-  const double cal_dofs = static_cast<double>(entry.mesh.dofs), cal_memory = entry.cost.memory_max_mb;
+  // MUMPS' own figure: the process's resident size here also holds every pre-solve before it.
+  const double cal_dofs = static_cast<double>(entry.mesh.dofs), cal_memory = entry.cost.factor_memory_mb;
   const double group_speedup = std::pow(o.ranks_per_task, kGroupSpeedupExponent);
   PlanEstimate e;
   double core_s = 0, worst_memory = 0;
@@ -103,12 +104,12 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
                          spec.header.f_max_multiple);
   e.report += fmt::format("  pre-solves:  every entry's f_1, h, dofs and mode count (coarse inertia) in {:.1f} s here\n",
                           presolve_s);
-  e.report += fmt::format("  calibration: {} solved here in {:.1f} s: {} modes, {} dofs, {:.0f} MB resident; time ~ "
+  e.report += fmt::format("  calibration: {} solved here in {:.1f} s: {} modes, {} dofs, {:.0f} MB MUMPS factors; time ~ "
                           "modes x dofs^{} / ranks_per_task^{}\n", tasks[cal].name, cal_s, entry.modes(), entry.mesh.dofs,
                           cal_memory, kDofsExponent, kGroupSpeedupExponent);
   e.report += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}: {:.2f} core-hours\n",
                           o.ranks, e.nodes, cores, groups, o.ranks_per_task, core_s / 3600);
-  e.report += fmt::format("  predicted:   {} wall (tasks handed out in order); largest memory per rank ~{:.0f} MB; time "
+  e.report += fmt::format("  predicted:   {} wall (tasks handed out in order); largest MUMPS factors per rank ~{:.0f} MB; time "
                           "limit with 1.5x margin + 10 min: {}\n", clock_text(wall_s), worst_memory,
                           clock_text(1.5 * wall_s + 600));
   e.report += "  tasks:\n";
