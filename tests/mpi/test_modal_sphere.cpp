@@ -189,4 +189,12 @@ TEST(ModalSphereSlow, ConvergenceOrder) {
   EXPECT_LE(errors[2], 2e-3);  // 0.1 % needs h near 0.22 m (docs/validation.md)
 }
 
+// The refined mesh of the acceptance: every one of the first ten Lamb frequencies within 0.1 %.
+TEST(ModalSphereSlow, RefinedMeshWithinATenthOfAPercent) {
+  const SphereRun run = solve_sphere(0.2);
+  EXPECT_EQ(static_cast<PetscInt>(run.solution.lambdas.size()),
+            run.solution.below_hi - run.solution.below_lo - run.solution.deflated_in_interval);
+  EXPECT_LE(compare_with_lamb(run, "h 0.20 m", true), 1e-3);
+}
+
 }  // namespace
