@@ -13,6 +13,8 @@
 #  failure (exit 4, listed with its reason by `info`), never a crash or a short mode list.
 # Usage: modal_checks.sh CLATTER_BANK CONFIG PYTHON COMPARE_PY SCRATCH MPIEXEC...
 set -uo pipefail
+# shellcheck source=interrupt_lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/interrupt_lib.sh"
 bank=$1 config=$2 python=$3 compare=$4 scratch=$5
 shift 5
 mpiexec=("$@")
@@ -51,14 +53,7 @@ run 4 -o d.h5 --ranks-per-task 2 > d.log 2>&1 || fail "2 groups of 2: exit $? ($
 # (e) SIGTERM to the ranks once the first task has landed, then --resume.
 run 2 -o e.h5 > e1.log 2>&1 &
 launcher=$!
-for _ in $(seq 1200); do
-  compgen -G 'e.h5.tasks/e*.h5' > /dev/null && break
-  sleep 0.05
-done
-descendants() { local c; for c in $(pgrep -P "$1"); do echo "$c"; descendants "$c"; done; }
-ranks=$(for p in $(descendants "$launcher"); do [[ $(ps -o comm= -p "$p") == clatter-bank ]] && echo "$p"; done)
-[[ -n $ranks ]] || fail "found no clatter-bank rank below the launcher to interrupt"
-kill -TERM $ranks
+term_ranks_when "$launcher" 'e.h5.tasks/e*.h5' || fail "found no clatter-bank rank below the launcher to interrupt"
 wait "$launcher"
 code=$?
 if [[ $code -eq 0 ]]; then

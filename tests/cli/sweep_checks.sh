@@ -6,6 +6,8 @@
 # exit code is 4, `info` lists it, and --resume retries it into the same bank.
 # Usage: sweep_checks.sh CLATTER_BANK CONFIG SCRATCH MPIEXEC...
 set -uo pipefail
+# shellcheck source=interrupt_lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/interrupt_lib.sh"
 bank=$1 config=$2 scratch=$3
 shift 3
 mpiexec=("$@")
@@ -43,16 +45,7 @@ echo "(c) 2 ranks per task:      $(sum c.h5)"
 # (d) SIGTERM to the ranks once the first task has landed.
 run 2 -o d.h5 > d1.log 2>&1 &
 launcher=$!
-for _ in $(seq 600); do
-  compgen -G 'd.h5.tasks/p*.h5' > /dev/null && break
-  sleep 0.05
-done
-# Only this sweep's ranks: the clatter-bank processes below the launcher (a subshell, then
-# mpiexec), never those of tests running beside this one.
-descendants() { local c; for c in $(pgrep -P "$1"); do echo "$c"; descendants "$c"; done; }
-ranks=$(for p in $(descendants "$launcher"); do [[ $(ps -o comm= -p "$p") == clatter-bank ]] && echo "$p"; done)
-[[ -n $ranks ]] || fail "found no clatter-bank rank below the launcher to interrupt"
-kill -TERM $ranks
+term_ranks_when "$launcher" 'd.h5.tasks/p*.h5' || fail "found no clatter-bank rank below the launcher to interrupt"
 wait "$launcher"
 code=$?
 [[ $code -eq 3 ]] || fail "interrupted sweep: exit $code, expected 3 ($(tail -5 d1.log))"
