@@ -99,7 +99,10 @@ model::Material read_material(const std::string& name, const toml::value& table_
   model::Material m;
   m.name = name;
   std::vector<bool> seen(kNumberKeys.size() + 1, false);
-  for (const auto& [key, v] : in_file_order(table_value.as_table())) {
+  for (const auto& entry : in_file_order(table_value.as_table())) {
+    // Not a structured binding: clang 14 (the fuzz preset) cannot capture one in the lambda below.
+    const auto& key = entry.first;
+    const auto& v = entry.second;
     const std::string head = where(source, *v) + ": " + name + "." + key + " = " + shown(*v) + ": ";
     if (key == kSourceKey) {
       if (!v->is_string()) throw InputError(head + "expected a string");
