@@ -70,6 +70,7 @@ void add_sweep_options(CLI::App& app, BankSweepOptions& o) {
 int run_bank_sweep(MPI_Comm world, const BankSweep& sweep, const BankSweepOptions& options) {
   SweepOptions so;
   mpi::agree(world, [&] { parse_slice(options.slice, so); });
+  spdlog::info("{}: {}", sweep.kind, sweep.summary);
   so.results_dir = options.results.empty() ? options.out + ".tasks" : options.results;
   so.ranks_per_task = options.ranks_per_task;
   so.resume = options.resume;

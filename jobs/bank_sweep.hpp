@@ -35,6 +35,7 @@ struct MergedBank {
 
 struct BankSweep {
   std::string kind;                 // "pan", "modal": prefixes log lines
+  std::string summary;              // one line on what the sweep computes, logged when it starts
   std::string config_toml;          // the sweep's manifest; its hash is the sweep id
   std::vector<std::string> task_names;
   TaskRunner run_task;              // unused by a merge alone

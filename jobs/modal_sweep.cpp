@@ -1,5 +1,6 @@
 #include "jobs/modal_sweep.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -22,6 +23,10 @@ BankSweep modal_bank_sweep(const io::Config& config) {
   BankSweep sweep;
   sweep.kind = "modal";
   sweep.config_toml = modal_sweep_toml(config, *spec);
+  const auto& m = spec->header.material;
+  sweep.summary = fmt::format("{} ellipsoids of {} (E = {:.4g} Pa, nu = {}, rho = {} kg/m^3); modes to {} f_1; {} with MUMPS",
+                              tasks->size(), m.name, m.youngs_pa, m.poisson, m.rho_kg_m3, spec->header.f_max_multiple,
+                              spec->header.solver_libraries);
   for (const auto& t : *tasks) sweep.task_names.push_back(t.name);
   sweep.run_task = [spec, tasks](MPI_Comm group, std::size_t t) { return run_modal_task(group, *spec, (*tasks)[t]); };
   sweep.merge = [spec, config_toml = sweep.config_toml](const std::string& results_dir) {
@@ -53,11 +58,6 @@ Command add_modal_command(CLI::App& parent) {
             const petsc::Session petsc(context.world);
             if (context.is_root && !petsc.ignored_environment().empty())
               spdlog::warn("modal: ignored (solver settings come from the config only): {}", petsc.ignored_environment());
-            const ModalSpec spec = make_modal_spec(*config);
-            spdlog::info("modal: {} ellipsoids of {} (E = {:.4g} Pa, nu = {}, rho = {} kg/m^3); modes to {} f_1; "
-                         "{} with {}", bank.task_names.size(), spec.header.material.name,
-                         spec.header.material.youngs_pa, spec.header.material.poisson, spec.header.material.rho_kg_m3,
-                         spec.header.f_max_multiple, petsc::Session::versions(), "MUMPS");
             return run_bank_sweep(context.world, bank, *sweep);
           }};
 }

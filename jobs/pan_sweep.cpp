@@ -1,6 +1,6 @@
 #include "jobs/pan_sweep.hpp"
 
-#include <spdlog/spdlog.h>
+#include <fmt/format.h>
 
 #include <memory>
 
@@ -20,6 +20,10 @@ BankSweep pan_bank_sweep(const io::Config& config, double progress_interval_s) {
   BankSweep sweep;
   sweep.kind = "pan";
   sweep.config_toml = config.to_toml();
+  sweep.summary = fmt::format("{} proxies x {} fields = {} tasks; {} directions x {} radii, N = {}, epsilon = {}",
+                              spec->proxies_bc_m.size(), spec->solve.fields.size(), tasks->size(),
+                              kernels::pan::vertex_count(spec->divisions), spec->radii_m.size(), spec->terms,
+                              spec->epsilon);
   for (const auto& t : *tasks) sweep.task_names.push_back(t.name);
   sweep.run_task = [spec, tasks, progress_interval_s](MPI_Comm group, std::size_t t) {
     return run_pan_task(group, *spec, (*tasks)[t], progress_interval_s);
@@ -50,10 +54,6 @@ Command add_pan_command(CLI::App& parent) {
             sweep->command = context.command_line;
             BankSweep bank;
             mpi::agree(context.world, [&] { bank = pan_bank_sweep(*config, options->progress_interval_s); });
-            const PanSpec spec = make_pan_spec(*config);
-            spdlog::info("pan: {} proxies x {} fields = {} tasks; {} directions x {} radii, N = {}, epsilon = {}",
-                         spec.proxies_bc_m.size(), spec.solve.fields.size(), bank.task_names.size(),
-                         kernels::pan::vertex_count(spec.divisions), spec.radii_m.size(), spec.terms, spec.epsilon);
             return run_bank_sweep(context.world, bank, *sweep);
           }};
 }

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "tests/unit/input_error.hpp"
+
 #include "core/errors.hpp"
 #include "io/config.hpp"
 #include "io/text_file.hpp"
@@ -20,20 +22,6 @@ const Schema& schema() {
                             {"run.label", std::string("demo"), "free text"},
                         }};
   return s;
-}
-
-// The message of the InputError `f` throws; fails the test if it throws nothing.
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    std::string m = e.what();
-    EXPECT_EQ(m.find('\n'), std::string::npos) << "message is not one line: " << m;
-    return m;
-  }
-  ADD_FAILURE() << "no InputError";
-  return {};
 }
 
 void expect_contains(const std::string& text, std::initializer_list<const char*> parts) {

@@ -4,6 +4,8 @@
 // sphere (tests/reference/lamb_sphere.hpp).
 #include <gtest/gtest.h>
 
+#include "tests/unit/input_error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -27,20 +29,6 @@ using clatter::io::parse_materials;
 using clatter::model::Material;
 
 namespace {
-
-// The message of the InputError `f` throws; fails the test if it throws nothing.
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    std::string m = e.what();
-    EXPECT_EQ(m.find('\n'), std::string::npos) << "message is not one line: " << m;
-    return m;
-  }
-  ADD_FAILURE() << "no InputError";
-  return {};
-}
 
 void expect_contains(const std::string& text, const std::vector<std::string>& parts) {
   for (const auto& p : parts) EXPECT_NE(text.find(p), std::string::npos) << "'" << p << "' not in: " << text;
