@@ -19,6 +19,9 @@ packages=(
   # alternative): the reference BLAS factorizes a 35k-dof modal entry ~6x slower; serial, so
   # MPI ranks do not oversubscribe cores with BLAS threads
   libopenblas0-serial
+  # LAPACK's headers-free link library: kernels/transfer's dense least squares (zgels), run by
+  # the same OpenBLAS
+  liblapack-dev
   # small libraries the code uses
   libtoml11-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libsndfile1-dev
   # tests and benchmarks; clang-14 and its libFuzzer runtime (libclang_rt.fuzzer) for the fuzz preset

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "io/modal_transfer.hpp"
 #include "io/provenance.hpp"
 #include "io/sweep_files.hpp"
 
@@ -91,6 +92,8 @@ void write_cost(File& f, const std::string& g, const model::ModalEntryCost& c) {
   write_attribute<double>(f, g, "estimate_s", c.estimate_s);
   write_attribute<double>(f, g, "solve_s", c.solve_s);
   write_attribute<double>(f, g, "total_s", c.total_s);
+  write_attribute<double>(f, g, "transfer_s", c.transfer_s);
+  write_attribute<double>(f, g, "transfer_core_s", c.transfer_core_s);
   write_attribute<double>(f, g, "factor_memory_mb", c.factor_memory_mb);
   write_attribute<double>(f, g, "memory_max_mb", c.memory_max_mb);
   write_attribute<std::int32_t>(f, g, "ranks", c.ranks);
@@ -103,6 +106,8 @@ model::ModalEntryCost read_cost(const File& f, const std::string& g) {
   c.estimate_s = read_attribute<double>(f, g, "estimate_s");
   c.solve_s = read_attribute<double>(f, g, "solve_s");
   c.total_s = read_attribute<double>(f, g, "total_s");
+  c.transfer_s = read_attribute<double>(f, g, "transfer_s");
+  c.transfer_core_s = read_attribute<double>(f, g, "transfer_core_s");
   c.factor_memory_mb = read_attribute<double>(f, g, "factor_memory_mb");
   c.memory_max_mb = read_attribute<double>(f, g, "memory_max_mb");
   c.ranks = read_attribute<std::int32_t>(f, g, "ranks");
@@ -125,6 +130,7 @@ void write_entry_content(File& f, const std::string& g, const ModalEntry& e) {
   write_dataset<double>(f, g + "/surface/nodes_m", flatten(e.surface_nodes_m), {ns, 3}, "m", true);
   write_dataset<std::int32_t>(f, g + "/surface/faces", flatten(e.surface_faces), {e.surface_faces.size(), 6}, "1", true);
   write_dataset<double>(f, g + "/shapes", e.shapes, {n, ns, 3}, "kg^-1/2", true);
+  write_transfer(f, g + "/transfer", e.transfer, n);
   write_mesh_stats(f, g + "/mesh", e.mesh);
   write_solve_record(f, g + "/solve", e.solve);
 }
@@ -189,6 +195,7 @@ ModalEntry read_modal_entry(const File& f, const std::string& g) {
   const auto ns = static_cast<long long>(dims[0]);
   e.surface_faces = unflatten<std::int32_t, 6>(read_dataset<std::int32_t>(f, g + "/surface/faces", {-1, 6}, "1"));
   e.shapes = read_dataset<double>(f, g + "/shapes", {n, ns, 3}, "kg^-1/2");
+  e.transfer = read_transfer(f, g + "/transfer", e.frequencies_hz.size());
   e.mesh = read_mesh_stats(f, g + "/mesh");
   e.solve = read_solve_record(f, g + "/solve");
   if (exists(f, g + "/cost")) e.cost = read_cost(f, g + "/cost");
@@ -221,6 +228,7 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   write_attribute<double>(file, "/settings", "residual_limit", h.residual_limit);
   write_attribute<std::int32_t>(file, "/settings", "ranks_per_task", h.ranks_per_task);
   write_attribute(file, "/settings", "solver_libraries", h.solver_libraries);
+  write_transfer_header(file, "/settings/transfer", h.transfer);
   std::vector<double> axes;
   for (const auto& e : bank.entries) axes.insert(axes.end(), e.axes_m.begin(), e.axes_m.end());
   create_group(file, "/entries");
@@ -260,6 +268,7 @@ model::ModalBank read_modal_bank(const std::string& path) {
   h.residual_limit = read_attribute<double>(file, "/settings", "residual_limit");
   h.ranks_per_task = read_attribute<std::int32_t>(file, "/settings", "ranks_per_task");
   h.solver_libraries = read_string_attribute(file, "/settings", "solver_libraries");
+  h.transfer = read_transfer_header(file, "/settings/transfer");
   Dims dims;
   const auto axes = read_dataset<double>(file, "/entries/axes_m", {-1, 3}, "m", &dims);
   for (std::size_t i = 0; i < dims[0]; ++i) {

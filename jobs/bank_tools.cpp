@@ -134,12 +134,15 @@ Command add_info_command(CLI::App& parent) {
 }
 
 Command add_probe_command(CLI::App& parent) {
-  auto* app = parent.add_subcommand("probe", "print p_i(x, t) of one proxy from a PAN bank as t_s,p_Pa CSV");
+  auto* app = parent.add_subcommand("probe", "print p_i(x, t) of one proxy from a PAN bank as t_s,p_Pa CSV, or "
+                                             "|p_i(x)| of every mode of one modal-bank entry");
   auto request = std::make_shared<ProbeRequest>();
+  auto entry = std::make_shared<std::optional<std::size_t>>();
   ProbeRequest& r = *request;
-  app->add_option("bank", r.bank_path, "PAN bank file")->required();
-  app->add_option("--proxy", r.proxy_bc_m, "proxy semi-axes B,C [m]")->delimiter(',')->required();
-  app->add_option("--field", r.field, "rigid-body field 1-6")->required();
+  app->add_option("bank", r.bank_path, "PAN or modal bank file")->required();
+  app->add_option("--proxy", r.proxy_bc_m, "PAN: proxy semi-axes B,C [m]")->delimiter(',');
+  app->add_option("--field", r.field, "PAN: rigid-body field 1-6");
+  app->add_option("--entry", *entry, "modal: the entry whose modes to evaluate");
   app->add_option("--point", r.point_m, "listener x,y,z [m], proxy centred on the origin")->delimiter(',')->required();
   app->add_option("--rate", r.rate_hz, "output sample rate [Hz]: reconstruct within 2x of it (Algorithm 1); "
                                        "0: the bank's rate")
@@ -148,8 +151,18 @@ Command add_probe_command(CLI::App& parent) {
   app->add_option("--interpolation", r.interpolation, "between directions: quadratic (default) or linear (the paper's)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, kernels::pan::Interpolation>{
           {"linear", kernels::pan::Interpolation::linear}, {"quadratic", kernels::pan::Interpolation::quadratic}}));
-  return {app, [request](const JobContext& context) -> int {
-            return print_on_root(context, [&] { return probe_csv(*request); });
+  return {app, [request, entry, app](const JobContext& context) -> int {
+            return print_on_root(context, [&] {
+              const ProbeRequest& q = *request;
+              if (is_modal_bank(q.bank_path)) {
+                if (!entry->has_value()) throw InputError("probe " + q.bank_path + ": a modal bank needs --entry N");
+                return modal_probe_csv(q.bank_path, **entry, q.point_m, q.scale);
+              }
+              if (entry->has_value()) throw InputError("--entry: only for a modal bank; " + q.bank_path + " is not one");
+              if (app->count("--proxy") == 0 || app->count("--field") == 0)
+                throw InputError("probe " + q.bank_path + ": a PAN bank needs --proxy B,C and --field N");
+              return probe_csv(q);
+            });
           }};
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -15,12 +16,19 @@
 #include "io/sweep_files.hpp"
 #include "jobs/modal_fem.hpp"
 #include "jobs/modal_solve.hpp"
+#include "jobs/modal_transfer.hpp"
 #include "mpi/comm.hpp"
 
 namespace clatter::jobs {
 namespace {
 
 using clock_type = std::chrono::steady_clock;
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
 double since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
 
 // Every rank meshes alike (TetGen is deterministic), so a failure is the same everywhere.
@@ -150,6 +158,7 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
       entry.relative_residuals.push_back(modes.relative_residuals[i]);
     }
   }
+  compute_modal_transfer(group, spec.header.transfer, entry);
   entry.cost.total_s = since(t_start);
   if (!root) return {};
   return entry;
@@ -158,9 +167,10 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
 TaskWriter run_modal_task(MPI_Comm group, const ModalSpec& spec, const ModalTask& task) {
   auto entry = build_modal_entry(group, spec, task.entry);
   if (mpi::rank(group) != 0) return {};
-  spdlog::info("modal: {} axes ({:.4f}, {:.4f}, {:.4f}): {} modes {:.1f}-{:.1f} Hz, {} dofs, {:.1f} s", task.name,
-               entry.axes_m[0], entry.axes_m[1], entry.axes_m[2], entry.modes(), entry.frequencies_hz.front(),
-               entry.frequencies_hz.back(), entry.mesh.dofs, entry.cost.total_s);
+  spdlog::info("modal: {} axes ({:.4f}, {:.4f}, {:.4f}): {} modes {:.1f}-{:.1f} Hz, {} dofs; transfer {:.1f} s, "
+               "median boundary residual {:.1e}; {:.1f} s", task.name, entry.axes_m[0], entry.axes_m[1], entry.axes_m[2],
+               entry.modes(), entry.frequencies_hz.front(), entry.frequencies_hz.back(), entry.mesh.dofs,
+               entry.cost.transfer_s, median(entry.transfer.boundary_residual), entry.cost.total_s);
   return [entry = std::move(entry)](io::File& file, const std::string& group_name) {
     io::write_modal_entry(file, group_name, entry);
   };

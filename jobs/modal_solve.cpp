@@ -19,12 +19,6 @@ namespace {
 
 constexpr PetscInt kRigidMotions = 6;
 
-void poll_interrupt(MPI_Comm comm, const char* where) {
-  int local = interrupt_requested() ? 1 : 0, any = 0;
-  mpi::check(MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm), "MPI_Allreduce");
-  if (any) throw Interrupted(fmt::format("interrupted before {}", where));
-}
-
 petsc::SliceSettings slice(const ModalSolveSettings& s, double lo, double hi) {
   petsc::SliceSettings out;
   out.lambda_lo = lo;
@@ -99,6 +93,12 @@ void apply_basis_rule(const FemModel& m, const std::vector<petsc::Vector>& refer
 }
 
 }  // namespace
+
+void poll_interrupt(MPI_Comm comm, const char* where) {
+  int local = interrupt_requested() ? 1 : 0, any = 0;
+  mpi::check(MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm), "MPI_Allreduce");
+  if (any) throw Interrupted(fmt::format("interrupted before {}", where));
+}
 
 double first_elastic_lambda(const FemModel& m, double guess, const ModalSolveSettings& s) {
   double sigma = guess;

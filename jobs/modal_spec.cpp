@@ -53,6 +53,16 @@ const io::Schema& modal_schema() {
           {"solver.max_iterations", std::int64_t{0}, "SLEPc restarts per shift; 0: SLEPc's default", {0, 1e6}},
           {"solver.nev_per_shift", std::int64_t{0}, "eigenpairs sought around each shift; 0: SLEPc's default",
            {0, 1e4}},
+          {"medium.c_m_s", 343.2, "speed of sound of the air the modes radiate into [m/s]", {0.0, 1e5, true}},
+          {"medium.rho_kg_m3", 1.2041, "density of the air [kg/m^3]", {0.0, 1e5, true}},
+          {"transfer.points_per_source", 2.0, "fit points per source, along each grid angle (docs/transfer.md)",
+           {1.0, 20.0}},
+          {"transfer.sources_per_wavelength", 2.5, "equivalent sources per air wavelength on their layer",
+           {1.0, 20.0}},
+          {"transfer.residual_target", 1e-2, "boundary residual above which other source layers are tried",
+           {1e-8, 1.0}},
+          {"transfer.tail_tolerance", 1e-3, "far-field share (L2) the multipole truncation may drop",
+           {1e-8, 0.1}},
       }};
   return schema;
 }
@@ -85,6 +95,14 @@ ModalSpec make_modal_spec(const io::Config& config) {
   spec.nev_per_shift = config.integer("solver.nev_per_shift");
   spec.coarse_edge_m = config.real("mesh.coarse_edge_m");
   h.coarse_edge_m = spec.coarse_edge_m;
+  h.transfer.method = "equivalent sources (monopoles on an inner ellipsoid, 8 parity classes), multipole about "
+                      "the centre";
+  h.transfer.sound_speed_m_s = config.real("medium.c_m_s");
+  h.transfer.air_density_kg_m3 = config.real("medium.rho_kg_m3");
+  h.transfer.points_per_source = config.real("transfer.points_per_source");
+  h.transfer.sources_per_wavelength = config.real("transfer.sources_per_wavelength");
+  h.transfer.residual_target = config.real("transfer.residual_target");
+  h.transfer.tail_tolerance = config.real("transfer.tail_tolerance");
   h.degenerate_gap = 1e-8;  // ModalSolveSettings' default: splits far below any mesh asymmetry
   spec.bounds = {config.real("mesh.max_radius_edge"), config.real("mesh.min_dihedral_deg"),
                  config.real("mesh.min_jacobian_ratio")};

@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "io/h5.hpp"
 #include "io/modal_bank.hpp"
+#include "kernels/transfer/multipole.hpp"
 
 namespace clatter::jobs {
 namespace {
@@ -30,16 +31,40 @@ std::string multiplicities(const model::ModalEntry& e) {
 std::string entry_table(const model::ModalEntry& e, std::size_t index) {
   std::string out = fmt::format("entry {}: axes ({:.6f}, {:.6f}, {:.6f}) m, {} modes\n", index, e.axes_m[0], e.axes_m[1],
                                 e.axes_m[2], e.modes());
-  out += "mode,frequency_hz,damping_ratio,multiplet,multiplicity,relative_residual\n";
+  out += "mode,frequency_hz,damping_ratio,multiplet,multiplicity,relative_residual,transfer_order,"
+         "boundary_residual,normal_attempts,sources\n";
+  const auto& t = e.transfer;
   for (std::size_t i = 0; i < e.modes(); ++i) {
     const auto size = std::count(e.cluster.begin(), e.cluster.end(), e.cluster[i]);
-    out += fmt::format("{},{:.9g},{:.4g},{},{},{:.2e}\n", i, e.frequencies_hz[i], e.damping_ratios[i], e.cluster[i],
-                       size, e.relative_residuals[i]);
+    out += fmt::format("{},{:.9g},{:.4g},{},{},{:.2e},{},{:.2e},{},{}\n", i, e.frequencies_hz[i], e.damping_ratios[i],
+                       e.cluster[i], size, e.relative_residuals[i], t.order[i], t.boundary_residual[i], t.attempts[i],
+                       t.sources[i]);
   }
   return out;
 }
 
 }  // namespace
+
+std::string modal_probe_csv(const std::string& path, std::size_t entry, const std::array<double, 3>& point_m,
+                            double scale) {
+  const model::ModalBank bank = io::read_modal_bank(path);
+  if (entry >= bank.entries.size())
+    throw InputError(fmt::format("--entry {}: {} holds entries 0-{}", entry, path, bank.entries.size() - 1));
+  if (!(scale > 0)) throw InputError(fmt::format("--scale {}: must be positive", scale));
+  const Eigen::Vector3d x(point_m[0], point_m[1], point_m[2]);
+  const auto& e = bank.entries[entry];
+  // The expansion holds outside the sphere around its sources; the bank promises r >= 2c.
+  if (x.norm() < 2 * scale * e.axes_m[2])
+    throw InputError(fmt::format("--point {},{},{}: {:.4g} m from the centre; the transfer holds from 2c = {:.4g} m",
+                                 point_m[0], point_m[1], point_m[2], x.norm(), 2 * scale * e.axes_m[2]));
+  std::string out = "mode,frequency_hz,abs_p_Pa,transfer_order,boundary_residual\n";
+  for (std::size_t i = 0; i < e.modes(); ++i) {
+    const auto m = kernels::transfer::scaled(kernels::transfer::stored_multipole(e.transfer, i), scale);
+    out += fmt::format("{},{:.9g},{:.9e},{},{:.2e}\n", i, e.frequencies_hz[i] / scale, std::abs(m.pressure(x)),
+                       m.order, e.transfer.boundary_residual[i]);
+  }
+  return out;
+}
 
 bool is_modal_bank(const std::string& path) {
   try {
@@ -70,15 +95,23 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
                      "split by < {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", h.f_max_multiple,
                      h.elements_per_wavelength, h.min_ratio, h.cluster_gap, h.solver_tolerance, h.residual_limit,
                      h.ranks_per_task);
+  const auto& tr = h.transfer;
+  out += fmt::format("  transfer:   {}; air c = {} m/s, rho = {} kg/m^3; {} fit points per source (per angle), {} sources per wavelength, "
+                     "residual target {}, tail {}\n", tr.method, tr.sound_speed_m_s, tr.air_density_kg_m3,
+                     tr.points_per_source, tr.sources_per_wavelength, tr.residual_target, tr.tail_tolerance);
   out += "  entry  a        b        c        modes  f_1 [Hz]   last [Hz]   dofs     max res   min dihedral  time [s]  "
-         "multiplicities (size x count)\n";
+         "transfer: max order, max boundary res, s  multiplicities (size x count)\n";
   for (std::size_t i = 0; i < bank.entries.size(); ++i) {
     const auto& e = bank.entries[i];
     const double worst = e.modes() ? *std::max_element(e.relative_residuals.begin(), e.relative_residuals.end()) : 0;
+    const auto& t = e.transfer;
+    const int order = e.modes() ? *std::max_element(t.order.begin(), t.order.end()) : 0;
+    const double boundary = e.modes() ? *std::max_element(t.boundary_residual.begin(), t.boundary_residual.end()) : 0;
     out += fmt::format("  {:<5}  {:.5f}  {:.5f}  {:.5f}  {:<5}  {:<9.2f}  {:<10.2f}  {:<7}  {:.1e}   {:<12.1f}  {:<8.1f}  "
-                       "{}\n", i, e.axes_m[0], e.axes_m[1], e.axes_m[2], e.modes(),
+                       "{:<3} {:.1e} {:<7.1f}                 {}\n", i, e.axes_m[0], e.axes_m[1], e.axes_m[2], e.modes(),
                        e.modes() ? e.frequencies_hz.front() : 0.0, e.modes() ? e.frequencies_hz.back() : 0.0,
-                       e.mesh.dofs, worst, e.mesh.min_dihedral_deg, e.cost.total_s, multiplicities(e));
+                       e.mesh.dofs, worst, e.mesh.min_dihedral_deg, e.cost.total_s, order, boundary, e.cost.transfer_s,
+                       multiplicities(e));
   }
   const auto& sw = bank.sweep;
   out += fmt::format("  sweep:      {} of {} entries in the bank, {} failed, {} missing\n", sw.tasks_done(),

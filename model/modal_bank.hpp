@@ -37,9 +37,36 @@ struct ModalSolveRecord {
 // Wall times and memory of an entry: provenance of one run, left out of the content hash.
 struct ModalEntryCost {
   double mesh_s = 0, assembly_s = 0, estimate_s = 0, solve_s = 0, total_s = 0;  // solve_s: basis rule included
+  double transfer_s = 0;        // the acoustic transfer of every mode (wall time of the group)
+  double transfer_core_s = 0;   // the same summed over the group's ranks
   double factor_memory_mb = 0;  // MUMPS' INFOG(21) (10^6 bytes), largest rank, count-check factorisation
   double memory_max_mb = 0;     // resident memory after the solve, largest rank (10^6 bytes)
   std::int32_t ranks = 0;
+};
+
+// Every mode's acoustic transfer (docs/transfer.md): the complex pressure per unit modal amplitude
+// outside the proxy, p(x) = sum_{n <= order} sum_m M_n^m h_n^(2)(k r) Y_n^m(theta, phi) about the
+// centre (003 eqs. 6-7; e^{+i omega t}, orthonormal Y_n^m with the Condon-Shortley phase), from
+// the exterior Neumann problem dp/dn = rho_air omega^2 u.n. Valid for r >= 2c.
+struct ModalTransfer {
+  std::vector<double> wavenumber_rad_m;   // k = omega / c_air per mode
+  std::vector<std::int32_t> order;        // n-bar per mode
+  std::vector<double> coefficients;       // M_n^m [Pa] as (re, im), mode after mode, (order + 1)^2 each,
+                                          // at index n^2 + n + m
+  std::vector<double> boundary_residual;  // ||dp/dn - g|| / ||g|| on the check grid
+  std::vector<double> normal_fraction;    // ||u.n|| / ||u|| over the surface: near 0 for a mode that slides
+                                          // along it (torsion), whose g and residual are the mesh's noise
+  std::vector<double> amplification;      // ||A|| ||c|| / ||b||: the fit's effective condition number
+  std::vector<double> source_depth;       // depth of the source layer kept, / a
+  std::vector<std::int32_t> attempts;     // source layers tried (1: the first met the residual target)
+  std::vector<std::int32_t> sources;      // equivalent sources of the kept fit (whole surface)
+
+  // Index of mode i's first (re, im) pair in `coefficients`.
+  std::size_t offset(std::size_t mode) const {
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < mode; ++i) at += static_cast<std::size_t>((order[i] + 1) * (order[i] + 1));
+    return at;
+  }
 };
 
 struct ModalEntry {
@@ -56,11 +83,20 @@ struct ModalEntry {
   // [mode][surface node][3]: mass-normalized displacement (u^T M u = 1) [kg^-1/2], the sign and
   // basis rule of kernels/modal/mode_basis.hpp applied.
   std::vector<double> shapes;
+  ModalTransfer transfer;
   ModalMeshStats mesh;
   ModalSolveRecord solve;
   ModalEntryCost cost;
 
   std::size_t modes() const { return frequencies_hz.size(); }
+};
+
+// How the transfer of every entry was computed (kernels/transfer/mode_transfer.hpp).
+struct TransferHeader {
+  std::string method;              // e.g. "equivalent sources, 8 parity classes; multipole about the centre"
+  double sound_speed_m_s = 0, air_density_kg_m3 = 0;
+  double points_per_source = 0, sources_per_wavelength = 0;
+  double residual_target = 0, tail_tolerance = 0;
 };
 
 // What every entry of a bank shares: the material and the settings that decide its content.
@@ -76,6 +112,7 @@ struct ModalBankHeader {
   double residual_limit = 0;           // every mode's relative residual is at most this
   std::int32_t ranks_per_task = 0;     // ranks that solved each entry (shapes agree across it to ~1e-8)
   std::string solver_libraries;        // e.g. "PETSc 3.18.5, SLEPc 3.18.2": the last bits depend on them
+  TransferHeader transfer;
 };
 
 struct ModalBank {

@@ -1,0 +1,81 @@
+// The acoustic transfer of one mode (kernels/transfer/mode_transfer.hpp) on the default bank's
+// sphere mesh, by k a and the data's angular order, and the evaluation of a stored multipole per
+// listener by its order (docs/benchmarks.md "Acoustic transfer").
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+#include "kernels/fem/ellipsoid_mesh.hpp"
+#include "kernels/transfer/mode_transfer.hpp"
+#include "kernels/transfer/special_functions.hpp"
+#include "kernels/transfer/surface_interpolation.hpp"
+
+namespace {
+using namespace clatter::kernels;
+constexpr double kA = 0.5773502691896258;
+
+struct SphereData {
+  std::vector<std::array<double, 3>> nodes;
+  std::vector<std::array<std::int32_t, 6>> faces;
+};
+
+const SphereData& sphere() {
+  static const SphereData data = [] {
+    const auto m = fem::mesh_ellipsoid({{kA, kA, kA}, 0.164});  // the default bank's sphere h
+    SphereData d;
+    for (Eigen::Index i = 0; i < m.mesh.nodes_m.cols(); ++i)
+      d.nodes.push_back({m.mesh.nodes_m(0, i), m.mesh.nodes_m(1, i), m.mesh.nodes_m(2, i)});
+    for (const auto& f : m.boundary) d.faces.push_back({f[0], f[1], f[2], f[3], f[4], f[5]});
+    return d;
+  }();
+  return data;
+}
+
+// args: k a, and n of the normal displacement Re Y_n^1 (n = 0: the pulsating sphere).
+void BM_TransferSphereMode(benchmark::State& state) {
+  const double ka = static_cast<double>(state.range(0));
+  const int n = static_cast<int>(state.range(1));
+  const auto& s = sphere();
+  std::vector<double> shape;
+  std::vector<std::complex<double>> y(static_cast<std::size_t>(transfer::harmonic_count(n)));
+  for (const auto& p : s.nodes) {
+    const Eigen::Vector3d d = Eigen::Vector3d(p[0], p[1], p[2]).normalized();
+    transfer::spherical_harmonics(n, d.z(), std::atan2(d.y(), d.x()), y.data());
+    const double v = y[static_cast<std::size_t>(transfer::harmonic_index(n, n > 0 ? 1 : 0))].real();
+    for (int c = 0; c < 3; ++c) shape.push_back(v * d(c));
+  }
+  transfer::TransferSettings settings;
+  if (const char* e = std::getenv("PPW")) settings.points_per_source = std::atof(e);
+  if (const char* e = std::getenv("SPW")) settings.sources_per_wavelength = std::atof(e);
+  if (const char* e = std::getenv("DEPTH")) settings.source_depths = {std::atof(e)};
+  const auto u = transfer::mesh_displacement({kA, kA, kA}, s.nodes, s.faces, shape);
+  const double spacing = transfer::surface_node_spacing_m(s.nodes, s.faces);
+  transfer::ModeTransfer t;
+  for (auto _ : state) {
+    t = transfer::solve_mode_transfer({kA, kA, kA}, ka / kA * settings.sound_speed_m_s, spacing, u, settings);
+    benchmark::DoNotOptimize(t.expansion.coefficients.data());
+  }
+  state.counters["sources"] = t.sources;
+  state.counters["fit_points"] = t.fit_points;
+  state.counters["order"] = t.expansion.order;
+  state.counters["classes"] = t.classes;
+  state.counters["attempts"] = t.attempts;
+  state.counters["residual"] = t.boundary_residual;
+}
+
+// Evaluation of |p| at one listener from a stored expansion of the given order.
+void BM_MultipoleEvaluate(benchmark::State& state) {
+  const int order = static_cast<int>(state.range(0));
+  transfer::Multipole m{50.0, order, std::vector<std::complex<double>>(static_cast<std::size_t>(transfer::harmonic_count(order)), {1e-3, 2e-3})};
+  const Eigen::Vector3d x(1.3, -0.4, 2.1);
+  for (auto _ : state) benchmark::DoNotOptimize(std::abs(m.pressure(x)));
+  state.counters["bytes"] = 16.0 * transfer::harmonic_count(order);
+}
+
+}  // namespace
+
+BENCHMARK(BM_TransferSphereMode)->ArgsProduct({{1, 10, 20, 40, 70}, {2}})->Args({40, 8})->Args({70, 16})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MultipoleEvaluate)->Arg(4)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMicrosecond);

@@ -1,0 +1,110 @@
+#include "kernels/transfer/ellipsoid_points.hpp"
+
+#include <Eigen/Geometry>
+#include <gsl/gsl_integration.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+
+namespace clatter::kernels::transfer {
+namespace {
+
+struct GaussRule {
+  std::vector<double> x, w;
+};
+
+GaussRule gauss_legendre(int n, double lo, double hi) {
+  std::unique_ptr<gsl_integration_glfixed_table, decltype(&gsl_integration_glfixed_table_free)> table(
+      gsl_integration_glfixed_table_alloc(static_cast<std::size_t>(n)), gsl_integration_glfixed_table_free);
+  if (!table) throw std::runtime_error("Gauss-Legendre table: allocation failed");
+  GaussRule rule;
+  for (int i = 0; i < n; ++i) {
+    double xi = 0, wi = 0;
+    gsl_integration_glfixed_point(lo, hi, static_cast<std::size_t>(i), &xi, &wi, table.get());
+    rule.x.push_back(xi);
+    rule.w.push_back(wi);
+  }
+  return rule;
+}
+
+// Length of the quarter ellipse with semi-axes p, q (Ramanujan's second approximation / 4).
+double quarter_perimeter(double p, double q) {
+  const double h = std::pow((p - q) / (p + q), 2);
+  return std::numbers::pi * (p + q) * (1 + 3 * h / (10 + std::sqrt(4 - 3 * h))) / 4;
+}
+
+}  // namespace
+
+SurfacePoints octant_grid(const std::array<double, 3>& axes_m, int n_u, int n_v) {
+  const auto [a, b, c] = axes_m;
+  const GaussRule ru = gauss_legendre(n_u, 0, std::numbers::pi / 2), rv = gauss_legendre(n_v, 0, std::numbers::pi / 2);
+  SurfacePoints points;
+  for (int i = 0; i < n_u; ++i) {
+    const double su = std::sin(ru.x[static_cast<std::size_t>(i)]), cu = std::cos(ru.x[static_cast<std::size_t>(i)]);
+    for (int j = 0; j < n_v; ++j) {
+      const double sv = std::sin(rv.x[static_cast<std::size_t>(j)]), cv = std::cos(rv.x[static_cast<std::size_t>(j)]);
+      const Eigen::Vector3d x(a * su * cv, b * su * sv, c * cu);
+      const Eigen::Vector3d xu(a * cu * cv, b * cu * sv, -c * su), xv(-a * su * sv, b * su * cv, 0);
+      const Eigen::Vector3d cross = xu.cross(xv);  // outward: at (a, 0, 0) it is (bc, 0, 0)
+      points.position_m.push_back(x);
+      points.normal.push_back(cross.normalized());
+      points.weight_m2.push_back(cross.norm() * ru.w[static_cast<std::size_t>(i)] * rv.w[static_cast<std::size_t>(j)]);
+    }
+  }
+  return points;
+}
+
+std::array<double, 2> octant_lengths_m(const std::array<double, 3>& axes_m) {
+  const auto [a, b, c] = axes_m;
+  return {std::max(quarter_perimeter(a, c), quarter_perimeter(b, c)), quarter_perimeter(a, b)};
+}
+
+double min_curvature_radius_m(const std::array<double, 3>& axes_m, const Eigen::Vector3d& x) {
+  const auto [a, b, c] = axes_m;
+  const double h2 = x.x() * x.x() / std::pow(a, 4) + x.y() * x.y() / std::pow(b, 4) + x.z() * x.z() / std::pow(c, 4);
+  const double abc2 = a * a * b * b * c * c;
+  const double gauss = 1 / (abc2 * h2 * h2);
+  const double mean = (a * a + b * b + c * c - x.squaredNorm()) / (2 * abc2 * h2 * std::sqrt(h2));
+  return 1 / (mean + std::sqrt(std::max(0.0, mean * mean - gauss)));
+}
+
+SurfacePoints inner_layer(const std::array<double, 3>& axes_m, const SurfacePoints& surface, double depth) {
+  SurfacePoints layer = surface;
+  for (std::size_t i = 0; i < surface.size(); ++i) {
+    const double d = depth * std::min(min_curvature_radius_m(axes_m, surface.position_m[i]), axes_m[0]);
+    layer.position_m[i] = surface.position_m[i] - d * surface.normal[i];
+  }
+  return layer;
+}
+
+std::array<int, 2> inner_layer_counts(const std::array<double, 3>& axes_m, double depth, double spacing_cap_m,
+                                      int minimum) {
+  const auto [a, b, c] = axes_m;
+  const int n = 96;
+  const double step = std::numbers::pi / 2 / n;
+  // Source position and local depth at parameters (u, v).
+  const auto layer = [&](double u, double v, double* d) {
+    const Eigen::Vector3d x(a * std::sin(u) * std::cos(v), b * std::sin(u) * std::sin(v), c * std::cos(u));
+    const Eigen::Vector3d normal(x.x() / (a * a), x.y() / (b * b), x.z() / (c * c));
+    *d = depth * std::min(min_curvature_radius_m(axes_m, x), a);
+    return Eigen::Vector3d(x - *d * normal.normalized());
+  };
+  double need_u = 0, need_v = 0;  // max over the octant of |dy/du| / spacing (and for v)
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double u = std::max(i * step, 1e-3), v = j * step;
+      double d = 0, du = 0, dv = 0;
+      const Eigen::Vector3d y = layer(u, v, &d);
+      const Eigen::Vector3d yu = layer(u + 1e-4, v, &du), yv = layer(u, v + 1e-4, &dv);
+      const double spacing = std::min(spacing_cap_m, d);
+      need_u = std::max(need_u, (yu - y).norm() / 1e-4 / spacing);
+      need_v = std::max(need_v, (yv - y).norm() / 1e-4 / spacing);
+    }
+  const auto count = [&](double need) { return std::max(minimum, static_cast<int>(std::ceil(need * std::numbers::pi / 2))); };
+  return {count(need_u), count(need_v)};
+}
+
+}  // namespace clatter::kernels::transfer

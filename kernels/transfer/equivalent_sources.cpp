@@ -1,0 +1,180 @@
+#include "kernels/transfer/equivalent_sources.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <numbers>
+
+// LAPACK's least squares (Fortran; the trailing argument is the hidden length of `trans`).
+extern "C" void zgels_(const char* trans, const int* m, const int* n, const int* nrhs, std::complex<double>* a,
+                       const int* lda, std::complex<double>* b, const int* ldb, std::complex<double>* work,
+                       const int* lwork, int* info, std::size_t trans_length);
+
+namespace clatter::kernels::transfer {
+namespace {
+
+constexpr std::complex<double> kI(0, 1);
+
+// e^{-ikr} / (4 pi r) and its gradient in x: -(1 + ikr) e^{-ikr} / (4 pi r^3) (x - y).
+struct Green {
+  std::complex<double> value, normal_derivative;
+};
+inline Green green(double k, const Eigen::Vector3d& x, const Eigen::Vector3d& n, const Eigen::Vector3d& y) {
+  const Eigen::Vector3d d = x - y;
+  const double r = d.norm();
+  const std::complex<double> e = std::polar(1.0 / (4 * std::numbers::pi * r), -k * r);
+  return {e, -(1.0 + kI * (k * r)) * e * (d.dot(n) / (r * r))};
+}
+
+// The 8 images of source j seen from point (x, n): G and dG/dn of G(x, mirror_t(y_j)).
+std::array<Green, 8> image_greens(double k, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
+                                  const std::array<Eigen::Vector3d, 8>& images) {
+  std::array<Green, 8> out;
+  for (std::size_t t = 0; t < 8; ++t) out[t] = green(k, x, n, images[t]);
+  return out;
+}
+
+std::array<Eigen::Vector3d, 8> images_of(const Eigen::Vector3d& y) {
+  std::array<Eigen::Vector3d, 8> images;
+  for (int t = 0; t < 8; ++t) images[static_cast<std::size_t>(t)] = mirror(y, t);
+  return images;
+}
+
+// Row i, column j of class sigma: sqrt(w_i) d/dn_i of sum_t sign(t, sigma) G(x_i, mirror_t(y_j)),
+// for every requested class in one pass over the images (the Green's functions, not the classes,
+// are the cost).
+std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit, const SourceLayout& layout,
+                                              const std::vector<int>& sigmas) {
+  const auto m = static_cast<Eigen::Index>(fit.size()), n = static_cast<Eigen::Index>(layout.sources.size());
+  std::vector<Eigen::MatrixXcd> a(sigmas.size(), Eigen::MatrixXcd(m, n));
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const auto images = images_of(layout.sources.position_m[static_cast<std::size_t>(j)]);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const auto ui = static_cast<std::size_t>(i);
+      const auto g = image_greens(k, fit.position_m[ui], fit.normal[ui], images);
+      const double w = std::sqrt(fit.weight_m2[ui]);
+      for (std::size_t c = 0; c < sigmas.size(); ++c) {
+        std::complex<double> sum = 0;
+        for (int t = 0; t < 8; ++t) sum += parity_sign(t, sigmas[c]) * g[static_cast<std::size_t>(t)].normal_derivative;
+        a[c](i, j) = w * sum;
+      }
+    }
+  }
+  return a;
+}
+
+// Tikhonov-regularized least squares, min ||A c - b||^2 + mu^2 ||c||^2, as LAPACK's QR least
+// squares (zgels) of [A; mu I]: overlapping sources make A numerically rank-deficient by design, and
+// mu at 1e-10 of A's scale keeps c bounded without touching the fit. LAPACK (OpenBLAS on Debian)
+// factors 5-10x faster than Eigen's own QR; it is serial, so the result is the same on any rank.
+Eigen::VectorXcd solve_regularized(const Eigen::MatrixXcd& a, const Eigen::VectorXcd& b) {
+  const Eigen::Index m = a.rows(), n = a.cols();
+  const double mu = 1e-10 * a.norm() / std::sqrt(static_cast<double>(n));
+  Eigen::MatrixXcd augmented(m + n, n);  // column-major, as LAPACK wants
+  augmented.topRows(m) = a;
+  augmented.bottomRows(n) = Eigen::MatrixXcd::Identity(n, n) * mu;
+  Eigen::VectorXcd rhs = Eigen::VectorXcd::Zero(m + n);
+  rhs.head(m) = b;
+  const int rows = static_cast<int>(m + n), cols = static_cast<int>(n), one = 1;
+  int info = 0, lwork = -1;
+  std::complex<double> query;
+  zgels_("N", &rows, &cols, &one, augmented.data(), &rows, rhs.data(), &rows, &query, &lwork, &info, 1);
+  lwork = static_cast<int>(query.real());
+  std::vector<std::complex<double>> work(static_cast<std::size_t>(std::max(lwork, 1)));
+  zgels_("N", &rows, &cols, &one, augmented.data(), &rows, rhs.data(), &rows, work.data(), &lwork, &info, 1);
+  if (info != 0) throw std::runtime_error("equivalent sources: LAPACK zgels failed, info " + std::to_string(info));
+  return rhs.head(n);
+}
+
+}  // namespace
+
+SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredData& g, const SourceLayout& layout,
+                      double class_threshold) {
+  SourceFit out;
+  const auto m = static_cast<Eigen::Index>(fit.size());
+  double total = 0;
+  for (int s = 0; s < 8; ++s)
+    for (std::size_t i = 0; i < fit.size(); ++i) total += fit.weight_m2[i] * g[static_cast<std::size_t>(s)][i] * g[static_cast<std::size_t>(s)][i];
+  out.data_norm = std::sqrt(total);
+  double dropped = 0;
+  std::vector<int> sigmas;
+  std::vector<Eigen::VectorXcd> rhs;
+  std::vector<double> norms;
+  for (int sigma = 0; sigma < 8; ++sigma) {
+    // g_sigma(x) = 1/8 sum_s sign(s) g(mirror_s x); ||g||^2 = 8 sum_sigma ||g_sigma||^2 on the octant.
+    Eigen::VectorXcd b(m);
+    double norm2 = 0;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      double v = 0;
+      for (int s = 0; s < 8; ++s) v += parity_sign(s, sigma) * g[static_cast<std::size_t>(s)][static_cast<std::size_t>(i)];
+      v /= 8;
+      b(i) = std::sqrt(fit.weight_m2[static_cast<std::size_t>(i)]) * v;
+      norm2 += 8 * std::norm(b(i));
+    }
+    if (total == 0 || norm2 < class_threshold * class_threshold * total) {
+      dropped += norm2;
+      continue;
+    }
+    sigmas.push_back(sigma);
+    rhs.push_back(std::move(b));
+    norms.push_back(std::sqrt(norm2));
+  }
+  const auto matrices = system_matrices(k_rad_m, fit, layout, sigmas);
+  for (std::size_t c = 0; c < sigmas.size(); ++c) {
+    const auto& a = matrices[c];
+    const auto& b = rhs[c];
+    ParityFit pf;
+    pf.sigma = sigmas[c];
+    pf.strengths = solve_regularized(a, b);
+    pf.data_norm = norms[c];
+    pf.fit_residual = (a * pf.strengths - b).norm() / b.norm();
+    pf.amplification = a.norm() * pf.strengths.norm() / b.norm();
+    out.classes.push_back(std::move(pf));
+  }
+  out.dropped_norm = std::sqrt(dropped);
+  return out;
+}
+
+std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const SourceLayout& layout,
+                                     const SurfacePoints& points) {
+  const std::size_t m = points.size();
+  std::vector<ClassField> out;
+  for (const auto& pf : fit.classes)
+    out.push_back({pf.sigma, std::vector<std::complex<double>>(m), std::vector<std::complex<double>>(m)});
+  for (std::size_t j = 0; j < layout.sources.size(); ++j) {
+    const auto images = images_of(layout.sources.position_m[j]);
+    for (std::size_t i = 0; i < m; ++i) {
+      const auto g = image_greens(k_rad_m, points.position_m[i], points.normal[i], images);
+      for (std::size_t c = 0; c < out.size(); ++c) {
+        std::complex<double> p = 0, dp = 0;
+        for (int t = 0; t < 8; ++t) {
+          const double sign = parity_sign(t, out[c].sigma);
+          p += sign * g[static_cast<std::size_t>(t)].value;
+          dp += sign * g[static_cast<std::size_t>(t)].normal_derivative;
+        }
+        const std::complex<double> strength = fit.classes[c].strengths(static_cast<Eigen::Index>(j));
+        out[c].pressure[i] += strength * p;
+        out[c].normal_derivative[i] += strength * dp;
+      }
+    }
+  }
+  return out;
+}
+
+void field_at_mirror(const std::vector<ClassField>& fields, int s, std::vector<std::complex<double>>& pressure,
+                     std::vector<std::complex<double>>& normal_derivative) {
+  const std::size_t m = fields.empty() ? 0 : fields.front().pressure.size();
+  pressure.assign(m, 0.0);
+  normal_derivative.assign(m, 0.0);
+  for (const auto& f : fields) {
+    const double sign = parity_sign(s, f.sigma);
+    for (std::size_t i = 0; i < m; ++i) {
+      pressure[i] += sign * f.pressure[i];
+      normal_derivative[i] += sign * f.normal_derivative[i];
+    }
+  }
+}
+
+}  // namespace clatter::kernels::transfer

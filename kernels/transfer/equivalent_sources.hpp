@@ -1,0 +1,56 @@
+#pragma once
+// The exterior Neumann problem of one mode by equivalent sources (Ochmann's source simulation,
+// the method of fundamental solutions): monopoles e^{-ikr} / (4 pi r) on a layer inside the surface,
+// strengths fitted in weighted least squares to dp/dn = g on a surface quadrature grid. The
+// ellipsoid's three mirror planes split g into 8 parity classes; each class is fitted on the first
+// octant with mirrored sources (a problem 8x smaller, 512x cheaper to factor), and classes with no
+// data are skipped. docs/transfer.md derives and measures it.
+#include <Eigen/Core>
+#include <array>
+#include <complex>
+#include <vector>
+
+#include "kernels/transfer/ellipsoid_points.hpp"
+
+namespace clatter::kernels::transfer {
+
+struct SourceLayout {
+  SurfacePoints sources;  // first octant (ellipsoid_points.hpp inner_layer); positions only matter
+};
+
+// g on the fit grid: [mirror s][point i] of the octant grid's mirror images.
+using MirroredData = std::array<std::vector<double>, 8>;
+
+struct ParityFit {
+  int sigma = 0;                               // parity class (bit set: odd in x, y, z)
+  Eigen::VectorXcd strengths;                  // per octant source; source j's mirror s has sign parity_sign(s, sigma)
+  double data_norm = 0;                        // ||g_sigma||, weighted
+  double fit_residual = 0;                     // ||A c - b|| / ||b||
+  double amplification = 0;                    // ||A|| ||c|| / ||b||: the effective condition number
+};
+
+struct SourceFit {
+  std::vector<ParityFit> classes;  // the fitted classes only
+  double data_norm = 0;            // ||g|| over the whole surface
+  double dropped_norm = 0;         // ||g|| of the classes too small to fit
+};
+
+// Fits every parity class of `g` whose share of ||g|| is at least `class_threshold`.
+SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredData& g, const SourceLayout& layout,
+                      double class_threshold);
+
+// p and dp/dn of each fitted class on the first-octant points; at mirror s the field is
+// sum over classes of parity_sign(s, sigma) times these (a field of class sigma is that sign
+// times itself at the mirror image, normals mirrored too).
+struct ClassField {
+  int sigma = 0;
+  std::vector<std::complex<double>> pressure, normal_derivative;
+};
+std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const SourceLayout& layout,
+                                     const SurfacePoints& points);
+
+// The whole field at the points of mirror s.
+void field_at_mirror(const std::vector<ClassField>& fields, int s, std::vector<std::complex<double>>& pressure,
+                     std::vector<std::complex<double>>& normal_derivative);
+
+}  // namespace clatter::kernels::transfer

@@ -1,0 +1,80 @@
+#include "kernels/transfer/multipole.hpp"
+
+#include <cmath>
+
+#include "kernels/transfer/special_functions.hpp"
+
+namespace clatter::kernels::transfer {
+
+std::complex<double> Multipole::pressure(const Eigen::Vector3d& x_m) const {
+  const double r = x_m.norm();
+  const auto h = spherical_hankel2(order, k_rad_m * r);
+  std::vector<std::complex<double>> y(static_cast<std::size_t>(harmonic_count(order)));
+  spherical_harmonics(order, x_m.z() / r, std::atan2(x_m.y(), x_m.x()), y.data());
+  std::complex<double> p = 0;
+  for (int n = 0; n <= order; ++n) {
+    std::complex<double> s = 0;
+    for (int m = -n; m <= n; ++m) {
+      const auto i = static_cast<std::size_t>(harmonic_index(n, m));
+      s += coefficients[i] * y[i];
+    }
+    p += h[static_cast<std::size_t>(n)] * s;
+  }
+  return p;
+}
+
+void add_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::complex<double> strength,
+                  std::vector<std::complex<double>>& coefficients) {
+  const double r = y_m.norm();
+  const auto j = spherical_bessel_j(order, k_rad_m * r);
+  std::vector<std::complex<double>> y(static_cast<std::size_t>(harmonic_count(order)));
+  if (r > 0)
+    spherical_harmonics(order, y_m.z() / r, std::atan2(y_m.y(), y_m.x()), y.data());
+  else
+    spherical_harmonics(order, 1.0, 0.0, y.data());
+  const std::complex<double> factor = std::complex<double>(0, -k_rad_m) * strength;
+  for (int n = 0; n <= order; ++n) {
+    const std::complex<double> fn = factor * j[static_cast<std::size_t>(n)];
+    for (int m = -n; m <= n; ++m) {
+      const auto i = static_cast<std::size_t>(harmonic_index(n, m));
+      coefficients[i] += fn * std::conj(y[i]);
+    }
+  }
+}
+
+int source_order(double k_rad_m, double rho_m) {
+  const double kr = k_rad_m * rho_m;
+  return static_cast<int>(std::ceil(kr + 3 * std::cbrt(kr) + 20));
+}
+
+int truncation_order(const std::vector<std::complex<double>>& coefficients, int order, double tolerance) {
+  std::vector<double> energy(static_cast<std::size_t>(order) + 1, 0.0);
+  double total = 0;
+  for (int n = 0; n <= order; ++n)
+    for (int m = -n; m <= n; ++m) energy[static_cast<std::size_t>(n)] += std::norm(coefficients[static_cast<std::size_t>(harmonic_index(n, m))]);
+  for (double e : energy) total += e;
+  double tail = 0;
+  for (int n = order; n > 0; --n) {
+    tail += energy[static_cast<std::size_t>(n)];
+    if (tail > tolerance * tolerance * total) return n;
+  }
+  return 0;
+}
+
+Multipole stored_multipole(const model::ModalTransfer& t, std::size_t mode) {
+  Multipole m{t.wavenumber_rad_m.at(mode), t.order.at(mode), {}};
+  const std::size_t at = t.offset(mode), count = static_cast<std::size_t>(harmonic_count(m.order));
+  m.coefficients.reserve(count);
+  for (std::size_t i = at; i < at + count; ++i) m.coefficients.emplace_back(t.coefficients[2 * i], t.coefficients[2 * i + 1]);
+  return m;
+}
+
+Multipole scaled(const Multipole& m, double gamma) {
+  Multipole s = m;
+  s.k_rad_m = m.k_rad_m / gamma;
+  const double factor = std::pow(gamma, -2.5);
+  for (auto& c : s.coefficients) c *= factor;
+  return s;
+}
+
+}  // namespace clatter::kernels::transfer

@@ -1,0 +1,154 @@
+#include "kernels/transfer/surface_interpolation.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+namespace clatter::kernels::transfer {
+namespace {
+
+// Faces bucketed by the cells of a uniform grid over [-1, 1]^3 that their unit-sphere corner
+// images' bounding boxes touch.
+class FaceGrid {
+ public:
+  FaceGrid(const std::vector<std::array<Eigen::Vector3d, 3>>& corners) {
+    double size = 0;
+    for (const auto& c : corners)
+      for (int k = 0; k < 3; ++k) size = std::max(size, (c[static_cast<std::size_t>(k)] - c[static_cast<std::size_t>((k + 1) % 3)]).norm());
+    cells_ = std::max(1, std::min(64, static_cast<int>(2.0 / std::max(size, 1e-6))));
+    for (std::size_t f = 0; f < corners.size(); ++f) {
+      Eigen::Vector3d lo = corners[f][0], hi = corners[f][0];
+      for (const auto& v : corners[f]) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+      }
+      // The spherical patch bulges past the flat corners' box by its sagitta (< an edge).
+      const auto l = cell((lo.array() - size).matrix()), h = cell((hi.array() + size).matrix());
+      for (int i = l[0]; i <= h[0]; ++i)
+        for (int j = l[1]; j <= h[1]; ++j)
+          for (int k = l[2]; k <= h[2]; ++k) buckets_[key({i, j, k})].push_back(static_cast<int>(f));
+    }
+  }
+  const std::vector<int>& faces_near(const Eigen::Vector3d& q) const {
+    static const std::vector<int> none;
+    const auto it = buckets_.find(key(cell(q)));
+    return it == buckets_.end() ? none : it->second;
+  }
+
+ private:
+  std::array<int, 3> cell(const Eigen::Vector3d& p) const {
+    std::array<int, 3> c{};
+    for (int k = 0; k < 3; ++k)
+      c[static_cast<std::size_t>(k)] = std::clamp(static_cast<int>((p(k) + 1) / 2 * cells_), 0, cells_ - 1);
+    return c;
+  }
+  long key(const std::array<int, 3>& c) const { return (static_cast<long>(c[0]) * cells_ + c[1]) * cells_ + c[2]; }
+  int cells_ = 1;
+  std::unordered_map<long, std::vector<int>> buckets_;
+};
+
+std::array<double, 6> shape_functions(const Eigen::Vector3d& l) {
+  return {l(0) * (2 * l(0) - 1), l(1) * (2 * l(1) - 1), l(2) * (2 * l(2) - 1), 4 * l(0) * l(1), 4 * l(1) * l(2), 4 * l(2) * l(0)};
+}
+
+// The flat-chord coordinates put the point O(h^2 curvature) off its place on the curved face:
+// Newton on x(l) = t p (the face's quadratic geometry meets the ray through p) recovers it.
+Eigen::Vector3d refine_on_curved_face(std::span<const std::array<double, 3>> nodes_m, const std::array<std::int32_t, 6>& face,
+                                      const Eigen::Vector3d& p, Eigen::Vector3d l) {
+  std::array<Eigen::Vector3d, 6> x;
+  for (std::size_t k = 0; k < 6; ++k) {
+    const auto& n = nodes_m[static_cast<std::size_t>(face[k])];
+    x[k] = {n[0], n[1], n[2]};
+  }
+  double t = 1;
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    const auto n = shape_functions(l);
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < 6; ++k) position += n[k] * x[k];
+    // d/dl1 and d/dl2 with l0 = 1 - l1 - l2.
+    const double l0 = l(0), l1 = l(1), l2 = l(2);
+    const Eigen::Vector3d d1 = -(4 * l0 - 1) * x[0] + (4 * l1 - 1) * x[1] + 4 * (l0 - l1) * x[3] + 4 * l2 * x[4] - 4 * l2 * x[5];
+    const Eigen::Vector3d d2 = -(4 * l0 - 1) * x[0] + (4 * l2 - 1) * x[2] - 4 * l1 * x[3] + 4 * l1 * x[4] + 4 * (l0 - l2) * x[5];
+    Eigen::Matrix3d j;
+    j << d1, d2, -p;
+    const Eigen::Vector3d step = j.partialPivLu().solve(t * p - position);
+    l(1) += step(0);
+    l(2) += step(1);
+    t += step(2);
+    l(0) = 1 - l(1) - l(2);
+    if (step.head<2>().norm() < 1e-13) break;
+  }
+  return l;
+}
+
+}  // namespace
+
+double surface_node_spacing_m(std::span<const std::array<double, 3>> nodes_m,
+                              std::span<const std::array<std::int32_t, 6>> faces) {
+  double sum = 0;
+  for (const auto& f : faces)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto& p = nodes_m[static_cast<std::size_t>(f[k])];
+      const auto& q = nodes_m[static_cast<std::size_t>(f[(k + 1) % 3])];
+      sum += std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
+    }
+  return faces.empty() ? 0.0 : sum / (3.0 * static_cast<double>(faces.size())) / 2;
+}
+
+SurfaceInterpolator::SurfaceInterpolator(const std::array<double, 3>& axes_m,
+                                         std::span<const std::array<double, 3>> nodes_m,
+                                         std::span<const std::array<std::int32_t, 6>> faces,
+                                         std::span<const Eigen::Vector3d> points) {
+  const Eigen::Vector3d inverse(1 / axes_m[0], 1 / axes_m[1], 1 / axes_m[2]);
+  const auto to_sphere = [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(x.cwiseProduct(inverse).normalized()); };
+  std::vector<std::array<Eigen::Vector3d, 3>> corners(faces.size());
+  std::vector<Eigen::Matrix3d> inverses(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    Eigen::Matrix3d m;
+    for (int k = 0; k < 3; ++k) {
+      const auto& n = nodes_m[static_cast<std::size_t>(faces[f][static_cast<std::size_t>(k)])];
+      corners[f][static_cast<std::size_t>(k)] = to_sphere({n[0], n[1], n[2]});
+      m.col(k) = corners[f][static_cast<std::size_t>(k)];
+    }
+    inverses[f] = m.inverse();
+  }
+  const FaceGrid grid(corners);
+  for (const auto& x : points) {
+    const Eigen::Vector3d q = to_sphere(x);
+    int best = -1;
+    double best_min = -1e300;
+    Eigen::Vector3d best_l = Eigen::Vector3d::Zero();
+    for (int f : grid.faces_near(q)) {
+      Eigen::Vector3d l = inverses[static_cast<std::size_t>(f)] * q;
+      if (l.sum() <= 0) continue;  // the ray meets the far side
+      l /= l.sum();
+      if (l.minCoeff() > best_min) {
+        best_min = l.minCoeff();
+        best = f;
+        best_l = l;
+      }
+    }
+    if (best < 0 || best_min < -1e-6)
+      throw std::runtime_error("surface interpolation: a point of the ellipsoid lies on no face of its mesh (min "
+                               "barycentric " + std::to_string(best_min) + ")");
+    const auto& face = faces[static_cast<std::size_t>(best)];
+    const Eigen::Vector3d l = refine_on_curved_face(nodes_m, face, x, best_l.cwiseMax(0.0) / best_l.cwiseMax(0.0).sum());
+    nodes_of_point_.push_back(face);
+    weights_.push_back(shape_functions(l));
+  }
+}
+
+std::vector<Eigen::Vector3d> SurfaceInterpolator::vectors(std::span<const double> nodal) const {
+  std::vector<Eigen::Vector3d> out(weights_.size(), Eigen::Vector3d::Zero());
+  for (std::size_t i = 0; i < weights_.size(); ++i)
+    for (std::size_t k = 0; k < 6; ++k) {
+      const auto at = 3 * static_cast<std::size_t>(nodes_of_point_[i][k]);
+      out[i] += weights_[i][k] * Eigen::Vector3d(nodal[at], nodal[at + 1], nodal[at + 2]);
+    }
+  return out;
+}
+
+}  // namespace clatter::kernels::transfer

@@ -1,0 +1,113 @@
+// The exterior solve of kernels/transfer/mode_transfer.hpp on the pulsating and vibrating sphere,
+// whose exact field is known: normal displacement u.n = Re Y_n^m on r = a gives
+// p = rho omega^2 Re Y_n^m h_n(kr) / (k h_n'(ka)) (docs/transfer.md). The sphere is meshed as a
+// bank entry is (curved 6-node surface of the default bank's sphere, h = 0.164 m), and the data
+// reach the solver through the same surface interpolation the bank uses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "kernels/fem/ellipsoid_mesh.hpp"
+#include "kernels/transfer/mode_transfer.hpp"
+#include "kernels/transfer/special_functions.hpp"
+
+namespace {
+using namespace clatter::kernels;
+using namespace clatter::kernels::transfer;
+constexpr double kPi = std::numbers::pi;
+constexpr double kA = 0.5773502691896258;  // the normalized sphere, a^2 + b^2 + c^2 = 1
+
+struct SurfaceMesh {
+  std::vector<std::array<double, 3>> nodes;
+  std::vector<std::array<std::int32_t, 6>> faces;
+  double spacing_m = 0;  // mean distance between neighbouring surface nodes
+};
+
+const SurfaceMesh& sphere_mesh() {
+  static const SurfaceMesh mesh = [] {
+    // h of the default glass bank's sphere entry: c_s / (4 f_1) / 3 (jobs/modal_job.cpp).
+    const auto m = fem::mesh_ellipsoid({{kA, kA, kA}, 0.164});
+    SurfaceMesh s;
+    for (Eigen::Index i = 0; i < m.mesh.nodes_m.cols(); ++i)
+      s.nodes.push_back({m.mesh.nodes_m(0, i), m.mesh.nodes_m(1, i), m.mesh.nodes_m(2, i)});
+    double edges = 0;
+    for (const auto& f : m.boundary) {
+      std::array<std::int32_t, 6> g{};
+      for (std::size_t k = 0; k < 6; ++k) g[k] = f[k];
+      s.faces.push_back(g);
+      edges += (m.mesh.nodes_m.col(f[0]) - m.mesh.nodes_m.col(f[1])).norm();
+    }
+    s.spacing_m = edges / static_cast<double>(m.boundary.size()) / 2;
+    return s;
+  }();
+  return mesh;
+}
+
+double real_harmonic(int n, int m, const Eigen::Vector3d& x) {
+  std::vector<std::complex<double>> y(static_cast<std::size_t>(harmonic_count(n)));
+  const Eigen::Vector3d d = x.normalized();
+  spherical_harmonics(n, d.z(), std::atan2(d.y(), d.x()), y.data());
+  return y[static_cast<std::size_t>(harmonic_index(n, m))].real();
+}
+
+// The worst relative error of |p| at r = 2a and 5a over directions where the harmonic is not small.
+struct SphereCase {
+  double worst = 0, residual = 0;
+  int order = 0;
+};
+SphereCase sphere_case(int n, int m, double ka, const TransferSettings& settings = {}) {
+  const auto& mesh = sphere_mesh();
+  std::vector<double> shape;
+  for (const auto& p : mesh.nodes) {
+    const Eigen::Vector3d x(p[0], p[1], p[2]), normal = x.normalized();
+    const double v = real_harmonic(n, m, x);
+    for (int c = 0; c < 3; ++c) shape.push_back(v * normal(c));
+  }
+  const double k = ka / kA, omega = k * settings.sound_speed_m_s;
+  const auto u = mesh_displacement({kA, kA, kA}, mesh.nodes, mesh.faces, shape);
+  const ModeTransfer t = solve_mode_transfer({kA, kA, kA}, omega, mesh.spacing_m, u, settings);
+  const auto hn = spherical_hankel2(n, ka);
+  const auto dhn = spherical_hankel2_derivative(hn, ka);
+  SphereCase out{0, t.boundary_residual, t.expansion.order};
+  for (double r_over_a : {2.0, 5.0}) {
+    const auto hr = spherical_hankel2(n, k * r_over_a * kA);
+    const std::complex<double> radial = settings.air_density_kg_m3 * omega * omega * hr[static_cast<std::size_t>(n)] /
+                                        (k * dhn[static_cast<std::size_t>(n)]);
+    for (int i = 0; i < 40; ++i) {
+      const double ct = -0.95 + 1.9 * (i % 8) / 7.0, phi = 0.3 + 2 * kPi * (i / 8) / 5.0;
+      const Eigen::Vector3d dir(std::sqrt(1 - ct * ct) * std::cos(phi), std::sqrt(1 - ct * ct) * std::sin(phi), ct);
+      const double y = real_harmonic(n, m, dir), y_max = std::sqrt((2.0 * n + 1) / (4 * kPi));
+      if (std::abs(y) < 0.2 * y_max) continue;
+      const double exact = std::abs(radial * y);
+      const double got = std::abs(t.expansion.pressure(r_over_a * kA * dir));
+      out.worst = std::max(out.worst, std::abs(got - exact) / exact);
+    }
+  }
+  return out;
+}
+
+TEST(TransferSphere, VibratingSphereWithinOnePercent) {
+  for (const auto& [n, m] : std::vector<std::pair<int, int>>{{0, 0}, {1, 1}, {2, 0}, {3, 2}})
+    for (double ka : {0.1, 1.0, 5.0, 10.0, 20.0, 30.0}) {
+      const SphereCase c = sphere_case(n, m, ka);
+      EXPECT_LT(c.worst, 0.01) << "n " << n << " m " << m << " ka " << ka << " residual " << c.residual;
+      EXPECT_LT(c.residual, 0.01) << "n " << n << " m " << m << " ka " << ka;
+      std::printf("n %d m %d ka %5.1f: |p| error %.2e, boundary residual %.2e, order %d\n", n, m, ka, c.worst,
+                  c.residual, c.order);
+    }
+}
+
+TEST(TransferSphere, NoBlowUpAtInteriorResonances) {
+  // k a at zeros of j_n: the sphere's interior Dirichlet eigenvalues, where a plain Helmholtz BEM
+  // is singular (j_0: pi, 2 pi; j_1: 4.4934; j_2: 5.7635); 2 pi and 8.9868 are also resonances of
+  // the default source layer (radius a / 2).
+  for (const auto& [n, ka] : std::vector<std::pair<int, double>>{
+           {0, kPi}, {0, 2 * kPi}, {1, 4.493409457909064}, {1, 8.986818915818128}, {2, 5.763459196894550}}) {
+    const SphereCase c = sphere_case(n, n, ka);
+    EXPECT_LT(c.worst, 0.01) << "n " << n << " ka " << ka;
+    std::printf("resonance n %d ka %.4f: |p| error %.2e, residual %.2e\n", n, ka, c.worst, c.residual);
+  }
+}
+
+}  // namespace
