@@ -80,9 +80,8 @@ Multipole expansion_of(double k, const SourceFit& fit, const SourceLayout& layou
   m.coefficients.assign(static_cast<std::size_t>(harmonic_count(order)), 0.0);
   for (const auto& pf : fit.classes)
     for (std::size_t j = 0; j < layout.sources.size(); ++j)
-      for (int s = 0; s < 8; ++s)
-        add_monopole(k, order, mirror(layout.sources.position_m[j], s),
-                     parity_sign(s, pf.sigma) * pf.strengths(static_cast<Eigen::Index>(j)), m.coefficients);
+      add_mirrored_monopole(k, order, layout.sources.position_m[j], pf.strengths(static_cast<Eigen::Index>(j)), pf.sigma,
+                            m.coefficients);
   m.order = truncation_order(m.coefficients, order, tail_tolerance);
   m.coefficients.resize(static_cast<std::size_t>(harmonic_count(m.order)));
   return m;

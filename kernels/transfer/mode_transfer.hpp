@@ -25,7 +25,7 @@ namespace clatter::kernels::transfer {
 struct TransferSettings {
   double sound_speed_m_s = 343.2;
   double air_density_kg_m3 = 1.2041;
-  double points_per_source = 2;        // fit points per angle / sources per angle (and >= the data's)
+  double points_per_source = 1.5;      // fit points per angle / sources per angle (and >= the data's)
   double sources_per_wavelength = 3;     // source spacing <= lambda / this (and <= the layer depth)
   std::vector<double> source_depths{0.65, 0.5, 0.35};  // layer depth / a, tried in this order
   double residual_target = 1e-2;       // residual x normal_fraction above it tries the next depth

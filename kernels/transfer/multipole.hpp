@@ -26,6 +26,12 @@ struct Multipole {
 void add_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::complex<double> strength,
                   std::vector<std::complex<double>>& coefficients);
 
+// The same for the 8 mirror images of y (mirror s: ellipsoid_points.hpp), image s with strength
+// parity_sign(s, sigma) * strength, summed in closed form from Y_n^m(y-hat) alone: flipping x
+// maps conj Y_n^m to (-1)^m Y_n^m, flipping y to Y_n^m, flipping z multiplies by (-1)^(n+m).
+void add_mirrored_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::complex<double> strength,
+                           int sigma, std::vector<std::complex<double>>& coefficients);
+
 // The order at which the expansion of sources within radius rho [m] is cut before truncation:
 // past k rho the terms fall off superexponentially (the k rho + 3 (k rho)^(1/3) rule of the
 // fast multipole method), and 20 more keep the geometric tail (rho / r)^n below 1e-6 at r = 2 rho.

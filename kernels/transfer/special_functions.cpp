@@ -64,24 +64,54 @@ std::vector<std::complex<double>> spherical_hankel2_derivative(const std::vector
   return d;
 }
 
+namespace {
+
+// The recurrence's coefficients a_nm = sqrt((4n^2 - 1) / (n^2 - m^2)) and
+// b_nm = sqrt(((n-1)^2 - m^2) / (4 (n-1)^2 - 1)) at harmonic_index(n, m), grown on demand per thread
+// (evaluation at a listener is the synthesizer's inner loop: no square roots there).
+struct RecurrenceTable {
+  int order = -1;
+  std::vector<double> a, b;
+  void reserve(int n_max) {
+    if (n_max <= order) return;
+    a.assign(static_cast<std::size_t>(harmonic_count(n_max)), 0.0);
+    b.assign(a.size(), 0.0);
+    for (int n = 2; n <= n_max; ++n)
+      for (int m = 0; m <= n - 2; ++m) {
+        const double nn = n, mm = m;
+        a[static_cast<std::size_t>(harmonic_index(n, m))] = std::sqrt((4 * nn * nn - 1) / (nn * nn - mm * mm));
+        b[static_cast<std::size_t>(harmonic_index(n, m))] =
+            std::sqrt(((nn - 1) * (nn - 1) - mm * mm) / (4 * (nn - 1) * (nn - 1) - 1));
+      }
+    order = n_max;
+  }
+};
+
+}  // namespace
+
 void spherical_harmonics(int n_max, double cos_theta, double phi, std::complex<double>* out) {
+  thread_local RecurrenceTable table;
+  table.reserve(n_max);
   const double sin_theta = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
   // Fully normalized associated Legendre functions P~_n^m (with the Condon-Shortley phase), by the
-  // standard three-term recurrence in n at fixed m, seeded from the sectoral P~_m^m.
+  // standard three-term recurrence in n at fixed m, seeded from the sectoral P~_m^m; e^{im phi} by
+  // repeated rotation.
+  const std::complex<double> rotation = std::polar(1.0, phi);
+  std::complex<double> e = 1.0;
   double pmm = std::sqrt(1 / (4 * std::numbers::pi));
   for (int m = 0; m <= n_max; ++m) {
-    if (m > 0) pmm *= -std::sqrt((2.0 * m + 1) / (2.0 * m)) * sin_theta;
-    const std::complex<double> e = std::polar(1.0, m * phi);
+    if (m > 0) {
+      pmm *= -std::sqrt((2.0 * m + 1) / (2.0 * m)) * sin_theta;
+      e *= rotation;
+    }
     double p_prev = 0, p = pmm;
     for (int n = m; n <= n_max; ++n) {
       if (n == m + 1) {
         p_prev = pmm;
         p = std::sqrt(2.0 * m + 3) * cos_theta * pmm;
       } else if (n > m + 1) {
-        const double nn = n, mm = m;
-        const double a = std::sqrt((4 * nn * nn - 1) / (nn * nn - mm * mm));
-        const double b = std::sqrt(((nn - 1) * (nn - 1) - mm * mm) / (4 * (nn - 1) * (nn - 1) - 1));
-        const double next = a * (cos_theta * p - b * p_prev);
+        const auto at = static_cast<std::size_t>(harmonic_index(n, m));
+        const double next = table.a[at] * (cos_theta * p - table.b[at] * p_prev);
         p_prev = p;
         p = next;
       }

@@ -7,8 +7,9 @@
 #  the order they arrive, so its last bits vary from run to run (docs/modal.md "Reproducible
 #  modes"): (c) 1 group of 2 and (d) 4 ranks as 2 groups of 2 must agree to 1e-12 in frequency and
 #  1e-9 in shape; across group sizes, (a) against (c): frequencies to 1e-10, shapes to 1e-8 after
-#  the basis rule (analysis/compare_modal_banks.py); and `info` lists the entries and an entry's
-#  multiplicities.
+#  the basis rule, and the transfer's multipole coefficients to 1e-6 (analysis/compare_modal_banks.py);
+#  `info` lists the entries and an entry's multiplicities; `probe` prints |p_k(x)| of every mode and
+#  follows 003 eq. 9 under --scale, and refuses a listener inside 2c or a missing --entry.
 #  and a mesh failing its quality bounds or a solve short of the residual limit is a recorded task
 #  failure (exit 4, listed with its reason by `info`), never a crash or a short mode list.
 # Usage: modal_checks.sh CLATTER_BANK CONFIG PYTHON COMPARE_PY SCRATCH MPIEXEC...
@@ -80,6 +81,20 @@ echo "(d) 2 groups of 2 on 4 ranks: $(sum d.h5)"
 grep -q "2 ellipsoids" info.log || fail "info does not count the entries: $(cat info.log)"
 grep -Eq "5x[0-9]+" info.log || fail "info shows no 5-fold multiplet for the sphere: $(cat info.log)"
 "$bank" info a.h5 --entry 0 > entry.log 2>&1 || fail "info --entry: exit $?"
-grep -q "^mode,frequency_hz,damping_ratio,multiplet,multiplicity,relative_residual" entry.log || fail "no mode table"
+grep -q "^mode,frequency_hz,damping_ratio,multiplet,multiplicity,relative_residual,transfer_order,boundary_residual" entry.log || fail "no mode table"
+
+# probe: |p_k(x)| of every mode (docs/transfer.md); the proxy scaled by 0.1 and heard at 0.1 x the
+# distance has 10x the frequencies and 0.1^-5/2 = 316.23x the pressure (003 eq. 9).
+"$bank" probe a.h5 --entry 0 --point 0.3,-0.4,2.5 > p1.csv 2>&1 || fail "probe: exit $?: $(cat p1.csv)"
+"$bank" probe a.h5 --entry 0 --point 0.03,-0.04,0.25 --scale 0.1 > p2.csv 2>&1 || fail "probe --scale: exit $?"
+[[ $(wc -l < p1.csv) -eq $(( $(grep -c '' entry.log) - 1 )) ]] || fail "probe: not one line per mode: $(head -3 p1.csv)"
+paste -d, p1.csv p2.csv | awk -F, 'NR > 1 { f = $7 / $2; p = $8 / $3; if (f < 9.999999 || f > 10.000001 || p < 316.2 || p > 316.26) { print "mode " $1 ": frequency x " f ", |p| x " p; bad = 1 } }
+  END { exit bad }' || fail "probe --scale does not follow gamma^-5/2"
+awk -F, 'NR > 1 && !($3 > 0) { exit 1 }' p1.csv || fail "probe: a mode with no pressure: $(head -3 p1.csv)"
+for bad in "--point 0,0,0.5:the transfer holds from 2c" ":a modal bank needs --entry N"; do
+  args=${bad%%:*}
+  if "$bank" probe a.h5 ${args:+--entry 0 $args} > pb.log 2>&1; then fail "probe ${args}: exit 0"; fi
+  grep -q "${bad#*:}" pb.log || fail "probe ${args}: $(cat pb.log)"
+done
 cat info.log
 echo "modal checks: all passed"

@@ -131,4 +131,26 @@ TEST(Multipole, MonopoleExpansionMatchesTheDirectField) {
   }
 }
 
+TEST(Multipole, MirroredMonopolesInClosedFormEqualTheEightImages) {
+  const Eigen::Vector3d y(0.21, 0.13, 0.34);
+  const double k = 12.0;
+  const int order = source_order(k, y.norm());
+  for (int sigma = 0; sigma < 8; ++sigma) {
+    std::vector<std::complex<double>> direct(static_cast<std::size_t>(harmonic_count(order))), closed = direct;
+    const std::complex<double> strength(0.3, 0.9);
+    for (int s = 0; s < 8; ++s) {
+      const Eigen::Vector3d image((s & 1) ? -y.x() : y.x(), (s & 2) ? -y.y() : y.y(), (s & 4) ? -y.z() : y.z());
+      const double sign = __builtin_popcount(static_cast<unsigned>(s & sigma)) % 2 ? -1.0 : 1.0;
+      add_monopole(k, order, image, sign * strength, direct);
+    }
+    add_mirrored_monopole(k, order, y, strength, sigma, closed);
+    double diff = 0, norm = 0;
+    for (std::size_t i = 0; i < direct.size(); ++i) {
+      diff += std::norm(direct[i] - closed[i]);
+      norm += std::norm(direct[i]);
+    }
+    EXPECT_LT(std::sqrt(diff / norm), 1e-13) << "class " << sigma;
+  }
+}
+
 }  // namespace
