@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <numbers>
 
+#include "io/modal_bank.hpp"
 #include "kernels/fem/ellipsoid_mesh.hpp"
 #include "kernels/transfer/mode_transfer.hpp"
 #include "kernels/transfer/special_functions.hpp"
@@ -46,10 +47,7 @@ void BM_TransferSphereMode(benchmark::State& state) {
     const double v = y[static_cast<std::size_t>(transfer::harmonic_index(n, n > 0 ? 1 : 0))].real();
     for (int c = 0; c < 3; ++c) shape.push_back(v * d(c));
   }
-  transfer::TransferSettings settings;
-  if (const char* e = std::getenv("PPW")) settings.points_per_source = std::atof(e);
-  if (const char* e = std::getenv("SPW")) settings.sources_per_wavelength = std::atof(e);
-  if (const char* e = std::getenv("DEPTH")) settings.source_depths = {std::atof(e)};
+  const transfer::TransferSettings settings;
   const auto u = transfer::mesh_displacement({kA, kA, kA}, s.nodes, s.faces, shape);
   const double spacing = transfer::surface_node_spacing_m(s.nodes, s.faces);
   transfer::ModeTransfer t;
@@ -65,6 +63,32 @@ void BM_TransferSphereMode(benchmark::State& state) {
   state.counters["residual"] = t.boundary_residual;
 }
 
+// A mode of a real bank: CLATTER_BANK=path (a modal bank), args: entry, mode. Skipped without it.
+void BM_TransferBankMode(benchmark::State& state) {
+  const char* path = std::getenv("CLATTER_BANK");
+  if (!path) {
+    state.SkipWithError("set CLATTER_BANK to a modal bank");
+    return;
+  }
+  static const auto bank = clatter::io::read_modal_bank(path);
+  const auto& e = bank.entries.at(static_cast<std::size_t>(state.range(0)));
+  const auto mode = static_cast<std::size_t>(state.range(1));
+  const std::size_t per_mode = 3 * e.surface_nodes_m.size();
+  const auto u = transfer::mesh_displacement(e.axes_m, e.surface_nodes_m, e.surface_faces,
+                                             std::span<const double>(e.shapes.data() + mode * per_mode, per_mode));
+  transfer::TransferSettings settings;
+  transfer::ModeTransfer t;
+  for (auto _ : state)
+    t = transfer::solve_mode_transfer(e.axes_m, 2 * std::numbers::pi * e.frequencies_hz[mode],
+                                      transfer::surface_node_spacing_m(e.surface_nodes_m, e.surface_faces), u, settings);
+  state.counters["sources"] = t.sources;
+  state.counters["fit_points"] = t.fit_points;
+  state.counters["attempts"] = t.attempts;
+  state.counters["residual"] = t.boundary_residual;
+  state.counters["normal_fraction"] = t.normal_fraction;
+  state.counters["kc"] = t.expansion.k_rad_m * e.axes_m[2];
+}
+
 // Evaluation of |p| at one listener from a stored expansion of the given order.
 void BM_MultipoleEvaluate(benchmark::State& state) {
   const int order = static_cast<int>(state.range(0));
@@ -78,4 +102,5 @@ void BM_MultipoleEvaluate(benchmark::State& state) {
 
 BENCHMARK(BM_TransferSphereMode)->ArgsProduct({{1, 10, 20, 40, 70, 90}, {2}})->Args({40, 8})->Args({90, 8})
     ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TransferBankMode)->Args({0, 0})->Args({0, 5})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_MultipoleEvaluate)->Arg(4)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMicrosecond);

@@ -28,6 +28,14 @@ constexpr double kMemoryExponent = 4.0 / 3.0;
 // Measured (docs/benchmarks.md "Modal bank"): 2 ranks per task run the default sphere entry 1.23x
 // faster than 1 (the slicing's triangular solves scale poorly), 2^0.3 = 1.23.
 constexpr double kGroupSpeedupExponent = 0.3;
+// The transfer's time per mode grows like (k_max c)^4.5 (sources ~ (kc)^2 whose Green's functions
+// and QR cost (kc)^4 to (kc)^6; docs/benchmarks.md "Acoustic transfer"), spread evenly over a group.
+constexpr double kTransferExponent = 4.5;
+
+// k c at the top of an entry's range: what sizes its transfer.
+double top_kc(const ModalSpec& spec, double f1_hz, const std::array<double, 3>& axes) {
+  return 2 * std::numbers::pi * f1_hz * spec.header.f_max_multiple * axes[2] / spec.header.transfer.sound_speed_m_s;
+}
 
 struct EntryPlan {
   double f1_hz = 0, h_m = 0;
@@ -72,7 +80,9 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     if (entries[i].failure.empty() && (cal == tasks.size() || entries[i].dofs < entries[cal].dofs)) cal = i;
   if (cal == tasks.size()) throw InputError("plan: no entry of the sweep meshes; see mesh.* and patch.samples");
   const auto entry = build_modal_entry(MPI_COMM_SELF, spec, cal);
-  const double cal_s = entry.cost.total_s, cal_modes = static_cast<double>(std::max<std::size_t>(entry.modes(), 1));
+  const double cal_transfer_s = entry.cost.transfer_s, cal_s = entry.cost.total_s - cal_transfer_s;
+  const double cal_modes = static_cast<double>(std::max<std::size_t>(entry.modes(), 1));
+  const double cal_kc = top_kc(spec, entries[cal].f1_hz, spec.samples_m[cal]);
   // The coarse mesh undercounts the top of the range (its frequencies are high): scaled by what
   // the calibration entry's fine solve found against its coarse count.
   const double count_scale = cal_modes / static_cast<double>(std::max<long long>(entries[cal].modes, 1));
@@ -88,7 +98,10 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     }
     p.modes = std::llround(static_cast<double>(p.modes) * count_scale);
     const double dofs_ratio = static_cast<double>(p.dofs) / cal_dofs;
-    p.task_s = cal_s * static_cast<double>(p.modes) / cal_modes * std::pow(dofs_ratio, kDofsExponent) / group_speedup;
+    const double mode_ratio = static_cast<double>(p.modes) / cal_modes;
+    const double kc_ratio = top_kc(spec, p.f1_hz, spec.samples_m[static_cast<std::size_t>(&p - entries.data())]) / cal_kc;
+    p.task_s = cal_s * mode_ratio * std::pow(dofs_ratio, kDofsExponent) / group_speedup +
+               cal_transfer_s * mode_ratio * std::pow(kc_ratio, kTransferExponent) / o.ranks_per_task;
     p.memory_mb = cal_memory * std::pow(dofs_ratio, kMemoryExponent) / o.ranks_per_task;
     e.task_s.push_back(p.task_s);
     core_s += p.task_s * o.ranks_per_task;
@@ -105,9 +118,10 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
                          spec.header.f_max_multiple);
   e.report += fmt::format("  pre-solves:  every entry's f_1, h, dofs and mode count (coarse inertia) in {:.1f} s here\n",
                           presolve_s);
-  e.report += fmt::format("  calibration: {} solved here in {:.1f} s: {} modes, {} dofs, {:.0f} MB MUMPS factors; time ~ "
-                          "modes x dofs^{} / ranks_per_task^{}\n", tasks[cal].name, cal_s, entry.modes(), entry.mesh.dofs,
-                          cal_memory, kDofsExponent, kGroupSpeedupExponent);
+  e.report += fmt::format("  calibration: {} solved here in {:.1f} s + {:.1f} s transfer: {} modes, {} dofs, {:.0f} MB MUMPS "
+                          "factors; time ~ modes x dofs^{} / ranks_per_task^{} + modes x (k c)^{} / ranks_per_task\n",
+                          tasks[cal].name, cal_s, cal_transfer_s, entry.modes(), entry.mesh.dofs, cal_memory,
+                          kDofsExponent, kGroupSpeedupExponent, kTransferExponent);
   e.report += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}: {:.2f} core-hours\n",
                           o.ranks, e.nodes, cores, groups, o.ranks_per_task, core_s / 3600);
   e.report += fmt::format("  predicted:   {} wall (tasks handed out in order); largest MUMPS factors per rank ~{:.0f} MB; time "

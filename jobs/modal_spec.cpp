@@ -9,9 +9,13 @@
 #include "io/materials.hpp"
 #include "io/text_file.hpp"
 #include "kernels/modal/patch_sampling.hpp"
+#include "kernels/transfer/mode_transfer.hpp"
 
 namespace clatter::jobs {
 namespace {
+
+// The transfer's defaults are the kernel's own (one definition).
+const kernels::transfer::TransferSettings kTransfer{};
 
 // A sweep of more entries is a mistake, not a bank (003's banks have tens).
 constexpr std::size_t kMaxSamples = 10000;
@@ -53,15 +57,16 @@ const io::Schema& modal_schema() {
           {"solver.max_iterations", std::int64_t{0}, "SLEPc restarts per shift; 0: SLEPc's default", {0, 1e6}},
           {"solver.nev_per_shift", std::int64_t{0}, "eigenpairs sought around each shift; 0: SLEPc's default",
            {0, 1e4}},
-          {"medium.c_m_s", 343.2, "speed of sound of the air the modes radiate into [m/s]", {0.0, 1e5, true}},
-          {"medium.rho_kg_m3", 1.2041, "density of the air [kg/m^3]", {0.0, 1e5, true}},
-          {"transfer.points_per_source", 2.0, "fit points per source, along each grid angle (docs/transfer.md)",
-           {1.0, 20.0}},
-          {"transfer.sources_per_wavelength", 2.5, "equivalent sources per air wavelength on their layer",
-           {1.0, 20.0}},
-          {"transfer.residual_target", 1e-2, "boundary residual above which other source layers are tried",
-           {1e-8, 1.0}},
-          {"transfer.tail_tolerance", 1e-3, "far-field share (L2) the multipole truncation may drop",
+          {"medium.c_m_s", kTransfer.sound_speed_m_s, "speed of sound of the air the modes radiate into [m/s]",
+           {0.0, 1e5, true}},
+          {"medium.rho_kg_m3", kTransfer.air_density_kg_m3, "density of the air [kg/m^3]", {0.0, 1e5, true}},
+          {"transfer.points_per_source", kTransfer.points_per_source,
+           "fit points per source, along each grid angle (docs/transfer.md)", {1.0, 20.0}},
+          {"transfer.sources_per_wavelength", kTransfer.sources_per_wavelength,
+           "equivalent sources per air wavelength on their layer", {1.0, 20.0}},
+          {"transfer.residual_target", kTransfer.residual_target,
+           "boundary residual x normal fraction above which other source layers are tried", {1e-8, 1.0}},
+          {"transfer.tail_tolerance", kTransfer.tail_tolerance, "far-field share (L2) the multipole truncation may drop",
            {1e-8, 0.1}},
       }};
   return schema;

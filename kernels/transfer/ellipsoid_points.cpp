@@ -71,12 +71,34 @@ double min_curvature_radius_m(const std::array<double, 3>& axes_m, const Eigen::
   return 1 / (mean + std::sqrt(std::max(0.0, mean * mean - gauss)));
 }
 
+double layer_depth_m(const std::array<double, 3>& axes_m, const Eigen::Vector3d& x, double depth) {
+  const double a = axes_m[0];
+  return depth * std::min(a, std::max(min_curvature_radius_m(axes_m, x), 0.5 * a));
+}
+
+namespace {
+
+// (x/a)^2 + (y/b)^2 + (z/c)^2: below 1 inside.
+double level(const std::array<double, 3>& axes_m, const Eigen::Vector3d& y) {
+  return std::pow(y.x() / axes_m[0], 2) + std::pow(y.y() / axes_m[1], 2) + std::pow(y.z() / axes_m[2], 2);
+}
+
+// x moved inward by its layer depth d; where the inward normal crosses the thin body near a sharp
+// rim and leaves through the other face within 1.5 d, d is shortened until it does not, so that
+// every source keeps at least d / 2 of body beyond it.
+Eigen::Vector3d source_below(const std::array<double, 3>& axes_m, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
+                             double depth) {
+  double d = layer_depth_m(axes_m, x, depth);
+  for (int i = 0; i < 20 && level(axes_m, x - 1.5 * d * n) >= 1; ++i) d *= 0.8;
+  return x - d * n;
+}
+
+}  // namespace
+
 SurfacePoints inner_layer(const std::array<double, 3>& axes_m, const SurfacePoints& surface, double depth) {
   SurfacePoints layer = surface;
-  for (std::size_t i = 0; i < surface.size(); ++i) {
-    const double d = depth * std::min(min_curvature_radius_m(axes_m, surface.position_m[i]), axes_m[0]);
-    layer.position_m[i] = surface.position_m[i] - d * surface.normal[i];
-  }
+  for (std::size_t i = 0; i < surface.size(); ++i)
+    layer.position_m[i] = source_below(axes_m, surface.position_m[i], surface.normal[i], depth);
   return layer;
 }
 
@@ -89,7 +111,7 @@ std::array<int, 2> inner_layer_counts(const std::array<double, 3>& axes_m, doubl
   const auto layer = [&](double u, double v, double* d) {
     const Eigen::Vector3d x(a * std::sin(u) * std::cos(v), b * std::sin(u) * std::sin(v), c * std::cos(u));
     const Eigen::Vector3d normal(x.x() / (a * a), x.y() / (b * b), x.z() / (c * c));
-    *d = depth * std::min(min_curvature_radius_m(axes_m, x), a);
+    *d = layer_depth_m(axes_m, x, depth);
     return Eigen::Vector3d(x - *d * normal.normalized());
   };
   double need_u = 0, need_v = 0;  // max over the octant of |dy/du| / spacing (and for v)

@@ -27,9 +27,15 @@ std::array<double, 2> octant_lengths_m(const std::array<double, 3>& axes_m);
 // h^2 = x^2/a^4 + y^2/b^4 + z^2/c^4).
 double min_curvature_radius_m(const std::array<double, 3>& axes_m, const Eigen::Vector3d& x);
 
-// The points moved inward along their normals by depth x min(R_min(x), a): a layer that follows
-// the surface, nearer to it where it curves sharply (a pancake's rim, a cigar's tips), never past
-// a focal point (depth < 1). Weights are kept (unused for sources).
+// The depth of the source layer below x: depth x min(a, max(R_min(x), a / 2)). It follows the
+// surface and comes nearer where it curves sharply (a pancake's rim, a cigar's tips), but not
+// below a/2 x depth: a layer as near as a thin rim's own radius would need sources that close all
+// along it.
+double layer_depth_m(const std::array<double, 3>& axes_m, const Eigen::Vector3d& x, double depth);
+
+// The points moved inward along their normals by layer_depth_m, shortened where the normal would
+// leave a thin body through its other face (near a rim sharper than a/2). Weights are kept
+// (unused for sources).
 SurfacePoints inner_layer(const std::array<double, 3>& axes_m, const SurfacePoints& surface, double depth);
 
 // Points per grid angle for that layer such that neighbouring sources are nowhere farther apart

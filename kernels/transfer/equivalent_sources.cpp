@@ -21,18 +21,27 @@ constexpr std::complex<double> kI(0, 1);
 struct Green {
   std::complex<double> value, normal_derivative;
 };
-inline Green green(double k, const Eigen::Vector3d& x, const Eigen::Vector3d& n, const Eigen::Vector3d& y) {
-  const Eigen::Vector3d d = x - y;
-  const double r = d.norm();
-  const std::complex<double> e = std::polar(1.0 / (4 * std::numbers::pi * r), -k * r);
-  return {e, -(1.0 + kI * (k * r)) * e * (d.dot(n) / (r * r))};
-}
 
-// The 8 images of source j seen from point (x, n): G and dG/dn of G(x, mirror_t(y_j)).
+// The 8 images of source j seen from point (x, n): G and dG/dn of G(x, mirror_t(y_j)). Written
+// as plain arrays over the 8 images: the sines and cosines are the transfer's largest cost after
+// the QR.
 std::array<Green, 8> image_greens(double k, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
                                   const std::array<Eigen::Vector3d, 8>& images) {
+  double r[8], dn[8], c[8], sn[8];
+  for (std::size_t t = 0; t < 8; ++t) {
+    const Eigen::Vector3d d = x - images[t];
+    r[t] = d.norm();
+    dn[t] = d.dot(n);
+  }
+  for (int t = 0; t < 8; ++t) {
+    c[t] = std::cos(k * r[t]);
+    sn[t] = std::sin(k * r[t]);
+  }
   std::array<Green, 8> out;
-  for (std::size_t t = 0; t < 8; ++t) out[t] = green(k, x, n, images[t]);
+  for (std::size_t t = 0; t < 8; ++t) {
+    const std::complex<double> e = std::complex<double>(c[t], -sn[t]) / (4 * std::numbers::pi * r[t]);
+    out[t] = {e, -(1.0 + kI * (k * r[t])) * e * (dn[t] / (r[t] * r[t]))};
+  }
   return out;
 }
 

@@ -25,8 +25,13 @@ Grids make_grids(const std::array<double, 3>& axes, double k, double data_spacin
   const double lambda = 2 * std::numbers::pi / k;
   Grids g;
   const auto outer = octant_lengths_m(axes);
-  const auto [su, sv] = inner_layer_counts(axes, depth, std::min(lambda / s.sources_per_wavelength, 2 * data_spacing_m),
-                                           s.minimum_per_angle);
+  auto [su, sv] = inner_layer_counts(axes, depth, std::min(lambda / s.sources_per_wavelength, 2 * data_spacing_m),
+                                     s.minimum_per_angle);
+  if (su * sv > s.max_sources_per_octant) {
+    const double shrink = std::sqrt(static_cast<double>(s.max_sources_per_octant) / (su * sv));
+    su = std::max(s.minimum_per_angle, static_cast<int>(su * shrink));
+    sv = std::max(s.minimum_per_angle, static_cast<int>(sv * shrink));
+  }
   g.layout.sources = inner_layer(axes, octant_grid(axes, su, sv), depth);
   // The sources' field holds orders up to about k rho (rho the layer's radius), whatever the
   // air wavelength on the surface: fit points `points_per_source` times the sources per angle

@@ -32,6 +32,9 @@ struct TransferSettings {
   double class_threshold = 1e-3;       // parity classes below this share of ||g|| are not fitted
   double tail_tolerance = 1e-3;        // far-field L2 share the truncation may drop
   int minimum_per_angle = 6;
+  // A ceiling on the sources of one octant (the QR costs their cube): past it both counts shrink
+  // alike and the residual says what that cost. The default sphere entry's top mode needs ~580.
+  int max_sources_per_octant = 900;
 };
 
 // The displacement u [m per unit modal amplitude] at the points of the first octant's mirror s.
