@@ -100,8 +100,8 @@ ModalSpec make_modal_spec(const io::Config& config) {
   spec.nev_per_shift = config.integer("solver.nev_per_shift");
   spec.coarse_edge_m = config.real("mesh.coarse_edge_m");
   h.coarse_edge_m = spec.coarse_edge_m;
-  h.transfer.method = "equivalent sources (monopoles on an inner ellipsoid, 8 parity classes), multipole about "
-                      "the centre";
+  h.transfer.method = "equivalent sources (monopoles on a layer under the surface, 8 parity classes), multipole "
+                      "about the centre";
   h.transfer.sound_speed_m_s = config.real("medium.c_m_s");
   h.transfer.air_density_kg_m3 = config.real("medium.rho_kg_m3");
   h.transfer.points_per_source = config.real("transfer.points_per_source");

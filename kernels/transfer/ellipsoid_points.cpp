@@ -104,7 +104,8 @@ SurfacePoints inner_layer(const std::array<double, 3>& axes_m, const SurfacePoin
 
 std::array<int, 2> inner_layer_counts(const std::array<double, 3>& axes_m, double depth, double spacing_cap_m,
                                       int minimum) {
-  const auto [a, b, c] = axes_m;
+  // Not a structured binding: the lambda below captures them (clang 14 cannot).
+  const double a = axes_m[0], b = axes_m[1], c = axes_m[2];
   const int n = 96;
   const double step = std::numbers::pi / 2 / n;
   // Source position and local depth at parameters (u, v).

@@ -91,10 +91,14 @@ grep -q "^mode,frequency_hz,damping_ratio,multiplet,multiplicity,relative_residu
 paste -d, p1.csv p2.csv | awk -F, 'NR > 1 { f = $7 / $2; p = $8 / $3; if (f < 9.999999 || f > 10.000001 || p < 316.2 || p > 316.26) { print "mode " $1 ": frequency x " f ", |p| x " p; bad = 1 } }
   END { exit bad }' || fail "probe --scale does not follow gamma^-5/2"
 awk -F, 'NR > 1 && !($3 > 0) { exit 1 }' p1.csv || fail "probe: a mode with no pressure: $(head -3 p1.csv)"
-for bad in "--point 0,0,0.5:the transfer holds from 2c" ":a modal bank needs --entry N"; do
+for bad in "--entry 0 --point 0,0,0.5:the transfer holds from 2c" "--point 0,0,3:a modal bank needs --entry N" \
+           "--entry 9 --point 0,0,3:--entry 9: a.h5 holds entries 0-1"; do
   args=${bad%%:*}
-  if "$bank" probe a.h5 ${args:+--entry 0 $args} > pb.log 2>&1; then fail "probe ${args}: exit 0"; fi
-  grep -q "${bad#*:}" pb.log || fail "probe ${args}: $(cat pb.log)"
+  # shellcheck disable=SC2086
+  "$bank" probe a.h5 $args > pb.log 2>&1
+  rc=$?
+  [[ $rc -eq 2 ]] || fail "probe ${args}: exit $rc, not 2"
+  grep -q -- "${bad#*:}" pb.log || fail "probe ${args}: $(cat pb.log)"
 done
 cat info.log
 echo "modal checks: all passed"
