@@ -6,12 +6,13 @@ the reductions add in another order), so their content hashes differ; this is th
 agree as numbers: the same ellipsoids, surface meshes and multiplet structure, frequencies within
 --frequency-tolerance (relative), each mode shape within --shape-tolerance (relative 2-norm over
 the surface) and each mode's multipole coefficients (docs/transfer.md) within --transfer-tolerance
-(relative 2-norm; the shorter expansion padded with zeros: a shape's last bits can move the
-truncation by an order whose terms are below the tail tolerance). No sign or basis fix is
+(relative 2-norm; the shorter expansion padded with zeros). Measured about 1e-6 between group
+sizes (the fit amplifies the shapes' 1e-10); the default 2e-3 allows the truncation to move by an
+order, whose terms hold at most the bank's tail tolerance (1e-3). No sign or basis fix is
 applied: the bank's basis rule must already make them agree.
 
 Usage: compare_modal_banks.py A.h5 B.h5 [--frequency-tolerance 1e-10] [--shape-tolerance 1e-8]
-                              [--transfer-tolerance 1e-6]
+                              [--transfer-tolerance 2e-3]
 Exit 0 when they agree, 1 when not (each difference printed), 2 when a file is not a modal bank.
 """
 import argparse
@@ -84,7 +85,7 @@ def main():
     p.add_argument("b")
     p.add_argument("--frequency-tolerance", type=float, default=1e-10)
     p.add_argument("--shape-tolerance", type=float, default=1e-8)
-    p.add_argument("--transfer-tolerance", type=float, default=1e-6)
+    p.add_argument("--transfer-tolerance", type=float, default=2e-3)
     args = p.parse_args()
     fa, a = entries(args.a)
     fb, b = entries(args.b)
