@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <map>
 #include <cstdlib>
 #include <numbers>
 
@@ -22,23 +23,28 @@ struct SphereData {
   std::vector<std::array<std::int32_t, 6>> faces;
 };
 
-const SphereData& sphere() {
-  static const SphereData data = [] {
-    const auto m = fem::mesh_ellipsoid({{kA, kA, kA}, 0.164});  // the default bank's sphere h
+// The sphere meshed at h [m] (0.164: the default bank's sphere entry), once per h.
+const SphereData& sphere(double h_m) {
+  static std::map<double, SphereData> cache;
+  auto [it, fresh] = cache.try_emplace(h_m);
+  if (!fresh) return it->second;
+  it->second = [h_m] {
+    const auto m = fem::mesh_ellipsoid({{kA, kA, kA}, h_m});
     SphereData d;
     for (Eigen::Index i = 0; i < m.mesh.nodes_m.cols(); ++i)
       d.nodes.push_back({m.mesh.nodes_m(0, i), m.mesh.nodes_m(1, i), m.mesh.nodes_m(2, i)});
     for (const auto& f : m.boundary) d.faces.push_back({f[0], f[1], f[2], f[3], f[4], f[5]});
     return d;
   }();
-  return data;
+  return it->second;
 }
 
-// args: k a, and n of the normal displacement Re Y_n^1 (n = 0: the pulsating sphere).
+// args: k a, n of the normal displacement Re Y_n^1 (n = 0: the pulsating sphere), and the mesh's
+// h in mm (the surface size: 164 is the default bank's sphere, 82 has 4x the surface nodes).
 void BM_TransferSphereMode(benchmark::State& state) {
   const double ka = static_cast<double>(state.range(0));
   const int n = static_cast<int>(state.range(1));
-  const auto& s = sphere();
+  const auto& s = sphere(static_cast<double>(state.range(2)) * 1e-3);
   std::vector<double> shape;
   std::vector<std::complex<double>> y(static_cast<std::size_t>(transfer::harmonic_count(n)));
   for (const auto& p : s.nodes) {
@@ -61,6 +67,7 @@ void BM_TransferSphereMode(benchmark::State& state) {
   state.counters["classes"] = t.classes;
   state.counters["attempts"] = t.attempts;
   state.counters["residual"] = t.boundary_residual;
+  state.counters["surface_faces"] = static_cast<double>(s.faces.size());
 }
 
 // A mode of a real bank: CLATTER_BANK=path (a modal bank), args: entry, mode. Skipped without it.
@@ -100,7 +107,8 @@ void BM_MultipoleEvaluate(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_TransferSphereMode)->ArgsProduct({{1, 10, 20, 40, 70, 90}, {2}})->Args({40, 8})->Args({90, 8})
+BENCHMARK(BM_TransferSphereMode)->ArgsProduct({{1, 10, 20, 40, 70, 90}, {2}, {164}})->Args({40, 8, 164})
+    ->Args({90, 8, 164})->Args({20, 2, 82})->Args({70, 2, 82})
     ->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_TransferBankMode)->Args({0, 0})->Args({0, 5})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_MultipoleEvaluate)->Arg(4)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMicrosecond);
