@@ -12,6 +12,7 @@
 #include "kernels/transfer/mode_transfer.hpp"
 #include "kernels/transfer/special_functions.hpp"
 #include "kernels/transfer/surface_interpolation.hpp"
+#include "tests/reference/kirchhoff_helmholtz.hpp"
 
 namespace {
 using namespace clatter::kernels;
@@ -133,29 +134,15 @@ TEST(TransferPancakeSlow, RigidTranslationFarFieldDespiteTheRimResidual) {
       TransferSettings st;
       const double omega = kc / axes[2] * st.sound_speed_m_s;
       const auto t = solve_mode_transfer(axes, omega, surface_node_spacing_m(s.nodes, s.faces), u, st);
-      const double k = t.expansion.k_rad_m;
       const auto grid = octant_grid(axes, 160, 160);
-      const auto fields = class_fields(k, t.solution->fit, t.solution->layout, grid);
-      double worst = 0;
-      for (int p = 0; p < 10; ++p) {
-        const double z = 1 - (2 * p + 1) / 10.0, phi = p * kPi * (3 - std::sqrt(5.0));
-        const Eigen::Vector3d x = 20 * axes[2] * Eigen::Vector3d(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
-        std::complex<double> sum = 0;
-        std::vector<std::complex<double>> pp, dp;
-        for (int mm = 0; mm < 8; ++mm) {
-          field_at_mirror(fields, mm, pp, dp);
-          for (std::size_t i = 0; i < grid.size(); ++i) {
-            const Eigen::Vector3d y = mirror(grid.position_m[i], mm), nn = mirror(grid.normal[i], mm);
-            const double g = st.air_density_kg_m3 * omega * omega * 1e-3 * nn.x();
-            const Eigen::Vector3d d = x - y;
-            const double r = d.norm();
-            const std::complex<double> green = std::polar(1 / (4 * kPi * r), -k * r);
-            const std::complex<double> dgreen = (1.0 + std::complex<double>(0, k * r)) * green * d.dot(nn) / (r * r);
-            sum += grid.weight_m2[i] * (pp[i] * dgreen - green * g);
-          }
-        }
-        worst = std::max(worst, std::abs(std::abs(t.expansion.pressure(x)) - std::abs(sum)) / std::abs(sum));
-      }
+      const auto g = [&](int s_mirror) {  // g of the translation: rho omega^2 u n_x
+        std::vector<double> out(grid.size());
+        for (std::size_t i = 0; i < grid.size(); ++i)
+          out[i] = st.air_density_kg_m3 * omega * omega * 1e-3 * mirror(grid.normal[i], s_mirror).x();
+        return out;
+      };
+      const double worst = clatter::reference::far_field_vs_kirchhoff_helmholtz(t.expansion, *t.solution, grid, g,
+                                                                               20 * axes[2]);
       EXPECT_LT(worst, 0.03) << "1:" << ratio << ":" << ratio << " at k c = " << kc;
       std::printf("1:%g:%g, k c %g: boundary residual %.3e, %d sources, far field vs Kirchhoff-Helmholtz %.2e\n", ratio,
                   ratio, kc, t.boundary_residual, t.sources, worst);
