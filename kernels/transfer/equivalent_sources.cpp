@@ -107,7 +107,6 @@ SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredDa
   for (int s = 0; s < 8; ++s)
     for (std::size_t i = 0; i < fit.size(); ++i) total += fit.weight_m2[i] * g[static_cast<std::size_t>(s)][i] * g[static_cast<std::size_t>(s)][i];
   out.data_norm = std::sqrt(total);
-  double dropped = 0;
   std::vector<int> sigmas;
   std::vector<Eigen::VectorXcd> rhs;
   std::vector<double> norms;
@@ -122,10 +121,7 @@ SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredDa
       b(i) = std::sqrt(fit.weight_m2[static_cast<std::size_t>(i)]) * v;
       norm2 += 8 * std::norm(b(i));
     }
-    if (total == 0 || norm2 < class_threshold * class_threshold * total) {
-      dropped += norm2;
-      continue;
-    }
+    if (total == 0 || norm2 < class_threshold * class_threshold * total) continue;  // counted in the residual
     sigmas.push_back(sigma);
     rhs.push_back(std::move(b));
     norms.push_back(std::sqrt(norm2));
@@ -138,11 +134,9 @@ SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredDa
     pf.sigma = sigmas[c];
     pf.strengths = solve_regularized(a, b);
     pf.data_norm = norms[c];
-    pf.fit_residual = (a * pf.strengths - b).norm() / b.norm();
     pf.amplification = a.norm() * pf.strengths.norm() / b.norm();
     out.classes.push_back(std::move(pf));
   }
-  out.dropped_norm = std::sqrt(dropped);
   return out;
 }
 

@@ -25,14 +25,12 @@ struct ParityFit {
   int sigma = 0;                               // parity class (bit set: odd in x, y, z)
   Eigen::VectorXcd strengths;                  // per octant source; source j's mirror s has sign parity_sign(s, sigma)
   double data_norm = 0;                        // ||g_sigma||, weighted
-  double fit_residual = 0;                     // ||A c - b|| / ||b||
   double amplification = 0;                    // ||A|| ||c|| / ||b||: the effective condition number
 };
 
 struct SourceFit {
   std::vector<ParityFit> classes;  // the fitted classes only
   double data_norm = 0;            // ||g|| over the whole surface
-  double dropped_norm = 0;         // ||g|| of the classes too small to fit
 };
 
 // Fits every parity class of `g` whose share of ||g|| is at least `class_threshold`.

@@ -94,16 +94,6 @@ Multipole expansion_of(double k, const SourceFit& fit, const SourceLayout& layou
 
 }  // namespace
 
-std::complex<double> ExteriorSolution::pressure(const Eigen::Vector3d& x) const {
-  SurfacePoints one;
-  one.position_m = {x};
-  one.normal = {Eigen::Vector3d::UnitZ()};
-  one.weight_m2 = {1};
-  std::complex<double> p = 0;
-  for (const auto& f : class_fields(k_rad_m, fit, layout, one)) p += f.pressure[0];
-  return p;
-}
-
 SurfaceDisplacement mesh_displacement(const std::array<double, 3>& axes_m, std::span<const std::array<double, 3>> nodes_m,
                                       std::span<const std::array<std::int32_t, 6>> faces, std::span<const double> shape) {
   return [=](const SurfacePoints& octant, int s) {

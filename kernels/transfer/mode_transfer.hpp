@@ -48,12 +48,11 @@ SurfaceDisplacement mesh_displacement(const std::array<double, 3>& axes_m,
                                             std::span<const double> shape);
 
 // The fitted field itself (sources and strengths), for checks against the expansion: valid
-// anywhere outside the source layer, the surface included.
+// anywhere outside the source layer, the surface included (class_fields, field_at_mirror).
 struct ExteriorSolution {
   double k_rad_m = 0;
   SourceLayout layout;
   SourceFit fit;
-  std::complex<double> pressure(const Eigen::Vector3d& x_m) const;
 };
 
 struct ModeTransfer {
