@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
   const std::size_t events = argc > 3 ? static_cast<std::size_t>(std::atol(argv[3])) : 210741;
   const io::Scene scene = rock_pile(1000, events, 6.0);
   const auto t_load = std::chrono::steady_clock::now();
-  const synth::PanSource pan(argv[1]);
+  synth::PanSource pan(argv[1]);
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
   std::vector<double> walls;
   synth::RenderStats stats;

@@ -24,10 +24,12 @@ packages=(
   liblapack-dev
   # small libraries the code uses
   libtoml11-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libsndfile1-dev
+  # the synthesizer's kd-tree over the modal bank's ellipsoids (003 section 5.4; header only)
+  libnanoflann-dev
   # tests and benchmarks; clang-14 and its libFuzzer runtime (libclang_rt.fuzzer) for the fuzz preset
   libgtest-dev libbenchmark-dev clang-14 libclang-rt-14-dev
   # analysis scripts (run with /usr/bin/python3)
-  python3 python3-numpy python3-h5py python3-matplotlib
+  python3 python3-numpy python3-scipy python3-h5py python3-matplotlib
   # the private single-node Slurm of the `slurm` tests (and the real thing on a workstation)
   slurmctld slurmd slurm-client munge
 )

@@ -38,6 +38,7 @@ find_package(CLI11 2.1 REQUIRED)
 find_package(fmt 9 REQUIRED)
 find_package(spdlog 1.10 REQUIRED)
 find_package(nlohmann_json 3.11 REQUIRED)
+find_package(nanoflann 1.4 REQUIRED)  # synth/modal_voices.cpp: the nearest modal proxy (header only)
 find_package(Threads REQUIRED)  # core/file_lock.cpp: the heartbeat thread of a lock
 pkg_check_modules(sndfile REQUIRED IMPORTED_TARGET sndfile>=1.2)
 # The modal bank's eigen-solves (petsc/). Debian: libpetsc-real3.18-dev, libslepc-real3.18-dev (real

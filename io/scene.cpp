@@ -70,6 +70,18 @@ double unit_quaternion_norm(const std::array<double, 4>& q, const std::string& w
   return n;
 }
 
+// The optional Rayleigh pair of a material: both keys or neither.
+void rayleigh_damping(const json& m, const std::string& w, SceneMaterial& mat) {
+  const bool alpha = m.contains("rayleigh_alpha_1_s"), beta = m.contains("rayleigh_beta_s");
+  if (alpha != beta) bad(w, "give both rayleigh_alpha_1_s and rayleigh_beta_s, or neither");
+  if (!alpha) return;
+  mat.has_damping = true;
+  mat.rayleigh_alpha_1_s = number(m["rayleigh_alpha_1_s"], w + ".rayleigh_alpha_1_s");
+  mat.rayleigh_beta_s = number(m["rayleigh_beta_s"], w + ".rayleigh_beta_s");
+  if (!(mat.rayleigh_alpha_1_s >= 0)) bad(w + ".rayleigh_alpha_1_s", fmt::format("{}: must be >= 0", mat.rayleigh_alpha_1_s));
+  if (!(mat.rayleigh_beta_s >= 0)) bad(w + ".rayleigh_beta_s", fmt::format("{}: must be >= 0", mat.rayleigh_beta_s));
+}
+
 Pose pose(const json& j, const std::string& where) {
   Pose p;
   p.position_m = vec<3>(need(j, "position_m", where), where + ".position_m");
@@ -111,6 +123,7 @@ Scene read_setting(const json& root, const std::string& path) {
                       number(need(m, "poisson_ratio", w), w + ".poisson_ratio")};
     if (!(mat.youngs_modulus_pa > 0)) bad(w + ".youngs_modulus_pa", fmt::format("{}: must be > 0", mat.youngs_modulus_pa));
     if (!(mat.poisson_ratio >= 0 && mat.poisson_ratio < 0.5)) bad(w + ".poisson_ratio", fmt::format("{}: must be in [0, 0.5)", mat.poisson_ratio));
+    rayleigh_damping(m, w, mat);
     scene.materials[name] = mat;
   }
   const json& g = need(root, "ground_material", path);
@@ -145,6 +158,11 @@ Scene read_setting(const json& root, const std::string& path) {
     if (o.contains("created_s")) obj.created_s = number(o["created_s"], w + ".created_s");
     if (o.contains("destroyed_s") && !o["destroyed_s"].is_null()) obj.destroyed_s = number(o["destroyed_s"], w + ".destroyed_s");
     if (!(obj.destroyed_s > obj.created_s)) bad(w + ".destroyed_s", fmt::format("{}: must be after created_s = {}", obj.destroyed_s, obj.created_s));
+    if (o.contains("base_frequency_hz")) {
+      obj.base_frequency_hz = number(o["base_frequency_hz"], w + ".base_frequency_hz");
+      if (!(obj.base_frequency_hz > 0)) bad(w + ".base_frequency_hz", fmt::format("{}: must be > 0", obj.base_frequency_hz));
+      obj.base_frequency_from = "scene";
+    }
     scene.objects.push_back(obj);
   }
   const json& listeners = need(root, "listeners", path);
@@ -186,7 +204,11 @@ void check_event(const ObjectIndex& objects, const SceneEvent& e, double previou
   if (!objects.count(e.a)) bad(e.where, fmt::format("object {} is not in the scene's objects", e.a));
   if (e.b != 0 && !objects.count(e.b)) bad(e.where, fmt::format("object {} is not in the scene's objects", e.b));
   if (e.b == e.a) bad(e.where, fmt::format("object {} collides with itself", e.a));
-  if (!(e.normal_speed_m_s > 0)) bad(e.where, fmt::format("normal speed {} m/s: must be > 0", e.normal_speed_m_s));
+  if (e.fracture) {
+    if (!(e.contact_time_s > 0)) bad(e.where, fmt::format("contact_time_s {} s: must be > 0", e.contact_time_s));
+  } else if (!(e.normal_speed_m_s > 0)) {
+    bad(e.where, fmt::format("normal speed {} m/s: must be > 0", e.normal_speed_m_s));
+  }
 }
 
 }  // namespace
@@ -207,15 +229,18 @@ Scene read_scene(const std::string& path, bool read_events) {
     if (!object_id(a)) bad(e.where + ".a", a.dump() + ": expected an object id");
     e.a = *object_id(a);
     const json& b = need(j, "b", e.where);
-    if (b == "ground")
-      e.b = 0;
+    if (b == "ground" || b == "fracture")
+      e.b = 0, e.fracture = b == "fracture";
     else if (object_id(b))
       e.b = *object_id(b);
     else
-      bad(e.where + ".b", b.dump() + ": expected an object id or \"ground\"");
+      bad(e.where + ".b", b.dump() + ": expected an object id, \"ground\" or \"fracture\"");
     e.point_m = vec<3>(need(j, "point_m", e.where), e.where + ".point_m");
     e.impulse_n_s = vec<3>(need(j, "impulse_n_s", e.where), e.where + ".impulse_n_s");
-    e.normal_speed_m_s = number(need(j, "normal_speed_m_s", e.where), e.where + ".normal_speed_m_s");
+    if (e.fracture)
+      e.contact_time_s = number(need(j, "contact_time_s", e.where), e.where + ".contact_time_s");
+    else
+      e.normal_speed_m_s = number(need(j, "normal_speed_m_s", e.where), e.where + ".normal_speed_m_s");
     e.pose_a = pose(need(j, "pose_a", e.where), e.where + ".pose_a");
     if (e.b != 0) e.pose_b = pose(need(j, "pose_b", e.where), e.where + ".pose_b");
     check_event(objects, e, previous);

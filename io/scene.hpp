@@ -11,6 +11,10 @@ namespace clatter::io {
 
 struct SceneMaterial {
   double youngs_modulus_pa = 0, poisson_ratio = 0;
+  // Rayleigh damping C = alpha M + beta K of the material's modes; only modal sound needs it, so
+  // it is optional (both or neither), and clatter-synth refuses a modal object without it.
+  bool has_damping = false;
+  double rayleigh_alpha_1_s = 0, rayleigh_beta_s = 0;
 };
 
 struct SceneObject {
@@ -26,6 +30,10 @@ struct SceneObject {
   // about which the James-lab format's rest-pose contact points are taken.
   std::array<double, 3> rest_centre_m{};
   std::string where;  // "FILE: objects[i]", for messages
+  // The lowest free-vibration frequency, when the simulator knows it (0: not given; clatter-synth
+  // then computes it from the mesh or the proxy, docs/synth.md).
+  double base_frequency_hz = 0;
+  std::string base_frequency_from;  // "scene" when given, "mesh" when computed from the mesh
   double created_s = 0, destroyed_s = std::numeric_limits<double>::infinity();
 };
 
@@ -40,6 +48,10 @@ struct SceneEvent {
   std::array<double, 3> point_m{};      // contact point, world frame
   std::array<double, 3> impulse_n_s{};  // impulse on a (b receives its opposite), world frame
   double normal_speed_m_s = 0;          // relative normal speed at contact
+  // A fracture impulse (003 section 3.3): the piece a is pushed off its parent by the released
+  // strain energy over contact_time_s (003 eq. 5's tau) instead of a Hertz contact; b is 0.
+  bool fracture = false;
+  double contact_time_s = 0;
   Pose pose_a, pose_b;
   std::string where;                    // "FILE: events[i]" or "FILE:line", for messages
 };

@@ -34,6 +34,7 @@ std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string
   for (const auto& o : scene.objects) {
     ObjectModel m;
     m.object = &o;
+    m.index = models.size();
     try {
       m.proxy = kernels::fit_proxy(o.inertia_kg_m2, o.mass_kg, o.volume_m3);
     } catch (const std::invalid_argument& e) {
@@ -44,8 +45,39 @@ std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string
   return models;
 }
 
-std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scene,
-                                                           const std::vector<const SoundSource*>& sources,
+namespace {
+
+// Contact duration and half-sine peak of one event. Hertz: effective mass and radius of the pair
+// (the ground: infinite mass, flat); a fracture impulse brings its own duration.
+struct Contact {
+  double tau_s = 0, peak_force_n = 0;
+  Vec3 arm_a{}, arm_b{};
+};
+
+Contact event_contact(const io::Scene& scene, const io::SceneEvent& e, const ObjectModel* a, const ObjectModel* b, double j) {
+  Contact c;
+  c.arm_a = rotate_inverse(e.pose_a.orientation_wxyz, sub(e.point_m, e.pose_a.position_m));
+  if (b) c.arm_b = rotate_inverse(e.pose_b.orientation_wxyz, sub(e.point_m, e.pose_b.position_m));
+  if (e.fracture) {
+    c.tau_s = e.contact_time_s;
+  } else {
+    double inv_r = 1 / contact_radius(a->proxy, c.arm_a), inv_m = 1 / a->object->mass_kg;
+    if (b) {
+      inv_r += 1 / contact_radius(b->proxy, c.arm_b);
+      inv_m += 1 / b->object->mass_kg;
+    }
+    const auto& mat_a = scene.materials.at(a->object->material);
+    const auto& mat_b = b ? scene.materials.at(b->object->material) : scene.materials.at(scene.ground_material);
+    c.tau_s = kernels::hertz_contact_time_s(1 / inv_m, 1 / inv_r, {mat_a.youngs_modulus_pa, mat_a.poisson_ratio},
+                                            {mat_b.youngs_modulus_pa, mat_b.poisson_ratio}, e.normal_speed_m_s);
+  }
+  c.peak_force_n = kernels::half_sine_peak(j, c.tau_s);
+  return c;
+}
+
+}  // namespace
+
+std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scene, const std::vector<SoundSource*>& sources,
                                                            const RenderOptions& options, RenderStats* stats) {
   const std::vector<ObjectModel> models = object_models(scene, scene.path);
   std::map<int, const ObjectModel*> by_id;
@@ -55,8 +87,8 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
   const auto n = static_cast<std::size_t>(std::ceil(duration * options.rate_hz));
   std::vector<std::vector<std::vector<double>>> out(
       sources.size(), std::vector<std::vector<double>>(scene.listeners_m.size(), std::vector<double>(n, 0.0)));
+  for (SoundSource* s : sources) s->begin(scene, models, options.rate_hz);
   RenderStats local;
-  const io::SceneMaterial& ground = scene.materials.at(scene.ground_material);
   Stage render_stage("render");
   for (const auto& e : scene.events) {
     Stage event_stage("event");  // one stage per event: per-impact stages would cost ~5 % here
@@ -65,20 +97,7 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
     const double j = std::sqrt(e.impulse_n_s[0] * e.impulse_n_s[0] + e.impulse_n_s[1] * e.impulse_n_s[1] +
                                e.impulse_n_s[2] * e.impulse_n_s[2]);
     if (!(j > 0)) continue;  // a resting contact: no sound
-    // Hertz: effective mass and radius of the pair (the ground: infinite mass, flat).
-    const Vec3 arm_a = rotate_inverse(e.pose_a.orientation_wxyz, sub(e.point_m, e.pose_a.position_m));
-    double inv_r = 1 / contact_radius(a->proxy, arm_a), inv_m = 1 / a->object->mass_kg;
-    Vec3 arm_b{};
-    if (b) {
-      arm_b = rotate_inverse(e.pose_b.orientation_wxyz, sub(e.point_m, e.pose_b.position_m));
-      inv_r += 1 / contact_radius(b->proxy, arm_b);
-      inv_m += 1 / b->object->mass_kg;
-    }
-    const auto& mat_a = scene.materials.at(a->object->material);
-    const auto& mat_b = b ? scene.materials.at(b->object->material) : ground;
-    const double tau = kernels::hertz_contact_time_s(1 / inv_m, 1 / inv_r, {mat_a.youngs_modulus_pa, mat_a.poisson_ratio},
-                                                     {mat_b.youngs_modulus_pa, mat_b.poisson_ratio}, e.normal_speed_m_s);
-    const double force = kernels::half_sine_peak(j, tau);
+    const Contact contact = event_contact(scene, e, a, b, j);
     const Vec3 dir_world{e.impulse_n_s[0] / j, e.impulse_n_s[1] / j, e.impulse_n_s[2] / j};
     for (int side = 0; side < (b ? 2 : 1); ++side) {
       const ObjectModel* m = side == 0 ? a : b;
@@ -91,22 +110,23 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
       Impact im;
       im.model = m;
       im.t_s = e.t_s;
-      im.tau_s = tau;
-      im.peak_force_n = force;
+      im.tau_s = contact.tau_s;
+      im.peak_force_n = contact.peak_force_n;
       im.direction_body = rotate_inverse(pose.orientation_wxyz, {sign * dir_world[0], sign * dir_world[1], sign * dir_world[2]});
-      im.contact_body_m = side == 0 ? arm_a : arm_b;
+      im.contact_body_m = side == 0 ? contact.arm_a : contact.arm_b;
       im.pose = pose;
-      for (std::size_t s = 0; s < sources.size(); ++s)
-        for (std::size_t l = 0; l < scene.listeners_m.size(); ++l) {
-          try {
-            sources[s]->add(im, scene.listeners_m[l], options.rate_hz, out[s][l]);
-          } catch (const InputError& err) {
-            throw InputError(fmt::format("{}: {}", e.where, err.what()));
-          }
+      for (std::size_t s = 0; s < sources.size(); ++s) {
+        try {
+          sources[s]->add(im, scene.listeners_m, options.rate_hz, out[s]);
+        } catch (const InputError& err) {
+          throw InputError(fmt::format("{}: {}", e.where, err.what()));
         }
+      }
       ++local.impacts;
+      if (e.fracture) ++local.fracture_impacts;
     }
   }
+  for (std::size_t s = 0; s < sources.size(); ++s) sources[s]->finish(out[s]);
   if (stats) *stats = local;
   return out;
 }

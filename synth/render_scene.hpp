@@ -17,13 +17,15 @@ struct RenderOptions {
 struct RenderStats {
   std::size_t impacts = 0;          // object-side impacts rendered
   std::size_t skipped_inactive = 0; // impacts on objects not yet created or already destroyed
+  std::size_t fracture_impacts = 0; // of `impacts`, fracture impulses (003 section 3.3)
 };
 
 // stems[s][l]: the samples of source s at listener l. Throws InputError (naming the scene file,
-// object or event) for an object whose inertia cannot be a rigid body's or a listener inside an
-// object.
+// object or event) for an object whose inertia cannot be a rigid body's, a listener inside an
+// object, or an object a source cannot voice. A fracture event's impulse acts over its given
+// contact_time_s on piece a alone; every other event's over the Hertz time of the pair.
 std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scene,
-                                                           const std::vector<const SoundSource*>& sources,
+                                                           const std::vector<SoundSource*>& sources,
                                                            const RenderOptions& options, RenderStats* stats = nullptr);
 
 // The objects' proxies (eq. 11); InputError names the object.

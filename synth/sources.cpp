@@ -27,7 +27,11 @@ std::size_t PanSource::nearest_proxy(const kernels::ProxyFit& fit) const {
   return best;
 }
 
-void PanSource::add(const Impact& im, const Vec3& listener, int rate_hz, std::vector<double>& out) const {
+void PanSource::add(const Impact& im, const std::vector<Vec3>& listeners, int rate_hz, std::vector<std::vector<double>>& out) {
+  for (std::size_t l = 0; l < listeners.size(); ++l) add_at(im, listeners[l], rate_hz, out[l]);
+}
+
+void PanSource::add_at(const Impact& im, const Vec3& listener, int rate_hz, std::vector<double>& out) const {
   const auto& fit = im.model->proxy;
   const std::size_t p = nearest_proxy(fit);
   const double beta = fit.a_m / bank_.header.a_m;

@@ -1,7 +1,8 @@
 #pragma once
 // The rendering loop's view of the world: every event becomes one Impact per object it moves, and
-// every sound source (PAN now; modal and ground later) adds what that impact radiates into the
-// same output buffers.
+// every sound source (PAN, modal; ground later) adds what that impact radiates into its own
+// output buffers (one per listener). A source may keep state between impacts (the modal source's
+// ringing modes) and finish it after the last.
 #include <array>
 #include <memory>
 #include <string>
@@ -16,6 +17,7 @@ namespace clatter::synth {
 
 struct ObjectModel {
   const io::SceneObject* object = nullptr;
+  std::size_t index = 0;    // in scene.objects
   kernels::ProxyFit proxy;  // the equivalent ellipsoid (eq. 11, volume matched)
 };
 
@@ -33,8 +35,15 @@ class SoundSource {
  public:
   virtual ~SoundSource() = default;
   virtual std::string name() const = 0;
-  // Adds the impact's pressure at the listener (world frame) into `out` (sample n at n / rate).
-  virtual void add(const Impact& impact, const Vec3& listener_world_m, int rate_hz, std::vector<double>& out) const = 0;
+  // Before the first impact of a render: the scene's objects and the output's length. InputError
+  // for an object the source cannot voice.
+  virtual void begin(const io::Scene& /*scene*/, const std::vector<ObjectModel>& /*models*/, int /*rate_hz*/) {}
+  // Adds the impact's pressure at each listener (world frame) into out[listener] (sample n at
+  // n / rate).
+  virtual void add(const Impact& impact, const std::vector<Vec3>& listeners_m, int rate_hz,
+                   std::vector<std::vector<double>>& out) = 0;
+  // After the last impact: whatever the source deferred.
+  virtual void finish(std::vector<std::vector<double>>& /*out*/) {}
 };
 
 // Acceleration noise from a PAN bank: nearest proxy by shape, scaled by beta = a / A (eq. 10).
@@ -42,8 +51,10 @@ class PanSource : public SoundSource {
  public:
   explicit PanSource(const std::string& bank_path);
   std::string name() const override { return "pan"; }
-  void add(const Impact& impact, const Vec3& listener_world_m, int rate_hz, std::vector<double>& out) const override;
+  void add(const Impact& impact, const std::vector<Vec3>& listeners_m, int rate_hz,
+           std::vector<std::vector<double>>& out) override;
  private:
+  void add_at(const Impact& impact, const Vec3& listener_world_m, int rate_hz, std::vector<double>& out) const;
   std::size_t nearest_proxy(const kernels::ProxyFit& fit) const;  // closest (B, C) at the bank's A
 
   model::PanBank bank_;  // as read, evaluated in place (kernels/pan)

@@ -6,13 +6,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "io/linked_libraries.hpp"
 #include "core/cleanup.hpp"
 #include "core/errors.hpp"
 #include "io/wav.hpp"
 #include "synth/load_scene.hpp"
+#include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
 
 using namespace clatter;
@@ -21,19 +24,51 @@ namespace {
 
 struct Options {
   std::string scene, impulses, bank, out = "out.wav", format = "float";
+  std::vector<std::string> modal_banks;
+  synth::ModalOptions modal;
   int rate_hz = 44100;
   bool normalize = false, stems = false;
 };
 
+// Peak and RMS of each source over all listeners, and the modal source's counts.
+void print_summary(const std::vector<synth::SoundSource*>& sources, const std::vector<std::vector<std::vector<double>>>& stems,
+                   const synth::ModalSource* modal) {
+  for (std::size_t s = 0; s < sources.size(); ++s) {
+    double peak = 0, energy = 0;
+    std::size_t count = 0;
+    for (const auto& ch : stems[s])
+      for (double v : ch) peak = std::max(peak, std::abs(v)), energy += v * v, ++count;
+    std::printf("clatter-synth: %-6s peak %.4g Pa, RMS %.4g Pa\n", sources[s]->name().c_str(), peak,
+                std::sqrt(energy / static_cast<double>(std::max<std::size_t>(count, 1))));
+  }
+  if (!modal) return;
+  const synth::ModalStats& m = modal->stats();
+  std::printf("clatter-synth: modal: %zu objects, %zu modes rendered (skipped: %zu above the top frequency, %zu below %g Hz, "
+              "%zu overdamped); base frequency from the scene %zu, the mesh %zu, the proxy %zu; %zu excitations into %zu "
+              "resonators, %.3g mode-samples\n",
+              m.objects, m.modes, m.skipped_high, m.skipped_low, synth::ModalOptions{}.min_frequency_hz, m.skipped_overdamped, m.from_scene, m.from_mesh, m.from_proxy,
+              m.excitations, m.resonators.resonators, static_cast<double>(m.resonators.mode_samples));
+}
+
 int run(const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   if (o.rate_hz < 8000 || o.rate_hz > 384000) throw InputError(fmt::format("--rate {}: must be in [8000, 384000] Hz", o.rate_hz));
+  if (o.bank.empty() && o.modal_banks.empty()) throw InputError("give a PAN bank (-b) or a modal bank (-m), or both");
   const io::Scene scene = synth::load_scene(o.scene, o.impulses);
-  const synth::PanSource pan(o.bank);
+  std::vector<std::unique_ptr<synth::SoundSource>> owned;
+  synth::ModalSource* modal = nullptr;
+  if (!o.bank.empty()) owned.push_back(std::make_unique<synth::PanSource>(o.bank));
+  if (!o.modal_banks.empty()) {
+    auto m = std::make_unique<synth::ModalSource>(o.modal_banks, o.modal);
+    modal = m.get();
+    owned.push_back(std::move(m));
+  }
+  std::vector<synth::SoundSource*> sources;
+  for (auto& s : owned) sources.push_back(s.get());
   synth::RenderOptions options;
   options.rate_hz = o.rate_hz;
   synth::RenderStats stats;
-  auto stems = synth::render_scene(scene, {&pan}, options, &stats);
+  auto stems = synth::render_scene(scene, sources, options, &stats);
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // The mix: every source at every listener.
   std::vector<std::vector<double>> mix = stems.front();
@@ -59,13 +94,15 @@ int run(const Options& o) {
   if (o.stems)
     for (std::size_t s = 0; s < stems.size(); ++s) {
       const std::string base = o.out.size() > 4 && o.out.substr(o.out.size() - 4) == ".wav" ? o.out.substr(0, o.out.size() - 4) : o.out;
-      io::write_wav(fmt::format("{}.{}.wav", base, s == 0 ? pan.name() : std::to_string(s)), scaled(stems[s]), o.rate_hz, format);
+      io::write_wav(fmt::format("{}.{}.wav", base, sources[s]->name()), scaled(stems[s]), o.rate_hz, format);
     }
   const double seconds = static_cast<double>(mix.front().size()) / o.rate_hz;
   std::printf("clatter-synth: wrote %s: %zu channel(s), %.3f s at %d Hz, %s; peak %.4g Pa%s\n", o.out.c_str(), mix.size(), seconds,
               o.rate_hz, o.format.c_str(), peak, o.normalize ? fmt::format(" (normalized by {:.4g})", gain).c_str() : "");
-  std::printf("clatter-synth: %zu impacts from %zu events (%zu on objects not alive then, skipped) rendered in %.3f s\n",
-              stats.impacts, scene.events.size(), stats.skipped_inactive, render_s);
+  std::printf("clatter-synth: %zu impacts (%zu of them fracture impulses) from %zu events (%zu on objects not alive then, "
+              "skipped) rendered in %.3f s\n",
+              stats.impacts, stats.fracture_impacts, scene.events.size(), stats.skipped_inactive, render_s);
+  print_summary(sources, stems, modal);
   return kExitOk;
 }
 
@@ -80,14 +117,20 @@ int main(int argc, char** argv) {
   app.add_option("-i,--scene", o.scene, "scene (JSON, docs/scene-format.md); with --impulses: the side file of "
                                         "objects, materials and listeners")->required();
   app.add_option("--impulses", o.impulses, "James-lab rigid-body impulse text file (C/P lines)");
-  app.add_option("-b,--bank", o.bank, "PAN bank (clatter-bank pan)")->required();
+  app.add_option("-b,--bank", o.bank, "PAN bank (clatter-bank pan): acceleration noise");
+  app.add_option("-m,--modal-bank", o.modal_banks, "modal bank (clatter-bank modal), repeatable: one per nu class; each "
+                                                   "object rings with the bank nearest its material's nu");
+  app.add_option("--max-mode-hz", o.modal.max_frequency_hz, "modes above this after scaling are skipped (and above 0.45 of "
+                                                            "the rate)")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--nu-tolerance", o.modal.poisson_tolerance, "a modal bank serves materials whose nu is within this of its "
+                                                              "own")->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("-o,--out", o.out, "output WAV")->capture_default_str();
   app.add_option("--rate", o.rate_hz, "output sample rate [Hz]")->capture_default_str();
   app.add_option("--format", o.format, "float (32-bit float, pascals) or pcm24")
       ->check(CLI::IsMember({"float", "pcm24"}))
       ->capture_default_str();
   app.add_flag("--normalize", o.normalize, "scale the peak to 0.99 instead of writing pascals");
-  app.add_flag("--stems", o.stems, "also write one file per source type (OUT.pan.wav)");
+  app.add_flag("--stems", o.stems, "also write one file per source type (OUT.pan.wav, OUT.modal.wav)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -1,5 +1,6 @@
 #include "kernels/transfer/multipole.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "kernels/transfer/special_functions.hpp"
@@ -21,6 +22,26 @@ std::complex<double> Multipole::pressure(const Eigen::Vector3d& x_m) const {
     p += h[static_cast<std::size_t>(n)] * s;
   }
   return p;
+}
+
+void pressure_magnitudes(const std::vector<Multipole>& modes, const Eigen::Vector3d& x_m, double* out) {
+  int top = 0;
+  for (const Multipole& m : modes) top = std::max(top, m.order);
+  const double r = x_m.norm();
+  std::vector<std::complex<double>> y(static_cast<std::size_t>(harmonic_count(top)));
+  spherical_harmonics(top, x_m.z() / r, std::atan2(x_m.y(), x_m.x()), y.data());
+  for (std::size_t k = 0; k < modes.size(); ++k) {
+    const Multipole& m = modes[k];
+    const auto h = spherical_hankel2(m.order, m.k_rad_m * r);
+    std::complex<double> p = 0;
+    for (int n = 0; n <= m.order; ++n) {
+      std::complex<double> s = 0;
+      for (int i = harmonic_index(n, -n); i <= harmonic_index(n, n); ++i)
+        s += m.coefficients[static_cast<std::size_t>(i)] * y[static_cast<std::size_t>(i)];
+      p += h[static_cast<std::size_t>(n)] * s;
+    }
+    out[k] = std::abs(p);
+  }
 }
 
 void add_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::complex<double> strength,

@@ -20,6 +20,10 @@ struct Multipole {
   std::complex<double> pressure(const Eigen::Vector3d& x_m) const;
 };
 
+// |p(x)| of several expansions about the same centre (a proxy's modes at one listener): the
+// harmonics are evaluated once, at the highest order, and each mode adds only its Hankel terms.
+void pressure_magnitudes(const std::vector<Multipole>& modes, const Eigen::Vector3d& x_m, double* out);
+
 // Adds to `coefficients` (size harmonic_count(order)) the expansion of a monopole
 // strength * e^{-ik|x - y|} / (4 pi |x - y|) at y (valid for |x| > |y|):
 // -ik strength j_n(k|y|) conj(Y_n^m(y-hat)) (Gumerov & Duraiswami 2004, eq. 2.1.91, conjugated).

@@ -15,6 +15,7 @@
 #include "synth/sources.hpp"
 #include "tests/reference/compare.hpp"
 #include "tests/reference/sphere_exact.hpp"
+#include "tests/synth/bank_paths.hpp"
 
 using namespace clatter;
 using reference::HalfSine;
@@ -23,9 +24,7 @@ using reference::relative_l2;
 
 namespace {
 
-std::string bank_path;
-
-
+const std::string& bank_path = test::pan_bank_path;
 
 }  // namespace
 
@@ -36,8 +35,8 @@ TEST(Synth, SingleImpulseOnASphereMatchesTheExactTranslatingSphere) {
   // frame; against the exact translating sphere with acceleration (F_max / m) S(t; t0, tau).
   // The bank (proxies (0.5, 0.5) and (0.35, 0.2), 3 cm cells, fields 1-3) is made by
   // `clatter-bank pan` (CTest fixture synth_sphere_bank): this program is serial, like clatter-synth.
-  ASSERT_FALSE(bank_path.empty()) << "usage: clatter-synth-tests BANK.h5";
-  const synth::PanSource pan(bank_path);
+  ASSERT_FALSE(bank_path.empty()) << "usage: clatter-synth-tests PAN.h5 [MODAL.h5]";
+  synth::PanSource pan(bank_path);
   const model::PanBankHeader header = io::read_pan_bank(bank_path).header;
 
   const double radius = 0.1, rho_rock = 2600, pi = 3.14159265358979323846;
@@ -88,6 +87,7 @@ TEST(Synth, SingleImpulseOnASphereMatchesTheExactTranslatingSphere) {
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
-  if (argc > 1) bank_path = argv[1];
+  if (argc > 1) test::pan_bank_path = argv[1];
+  if (argc > 2) test::modal_bank_path = argv[2];
   return RUN_ALL_TESTS();
 }

@@ -1,0 +1,43 @@
+#include "kernels/modal/half_sine_response.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace clatter::kernels::modal {
+namespace {
+
+// (e^{z T} - 1) / z, continued to T at z = 0: a mode tuned to the pulse (z = i Omega - s -> 0 for
+// an undamped mode at omega = pi / tau) must not divide by zero.
+std::complex<double> expm1_over(std::complex<double> z, double t) {
+  const std::complex<double> zt = z * t;
+  if (std::abs(zt) > 1e-4) return (std::exp(zt) - 1.0) / z;
+  return t * (1.0 + zt / 2.0 + zt * zt / 6.0 + zt * zt * zt / 24.0);  // truncation below 1e-20
+}
+
+}  // namespace
+
+HalfSineResponse::HalfSineResponse(double omega, double xi, double tau, double amplitude) {
+  if (!(omega > 0) || !(xi >= 0 && xi < 1) || !(tau > 0))
+    throw std::invalid_argument("HalfSineResponse: needs omega > 0, 0 <= xi < 1 and tau > 0");
+  const double omega_d = omega * std::sqrt(1 - xi * xi);
+  s_ = {-xi * omega, omega_d};
+  tau_s_ = tau;
+  omega_force_ = std::numbers::pi / tau;
+  gain_ = amplitude / omega_d;
+  free_ = gain_ * integral(tau);
+}
+
+// sin(W t) = (e^{iWt} - e^{-iWt}) / 2i, so I(T) = [E(iW - s) - E(-iW - s)] / 2i with E(z) = (e^{zT} - 1) / z.
+std::complex<double> HalfSineResponse::integral(double t) const {
+  const std::complex<double> i{0, 1};
+  return (expm1_over(i * omega_force_ - s_, t) - expm1_over(-i * omega_force_ - s_, t)) / (2.0 * i);
+}
+
+double HalfSineResponse::at(double t) const {
+  if (!(t > 0)) return 0;
+  if (t >= tau_s_) return (free_ * std::exp(s_ * t)).imag();
+  return gain_ * (std::exp(s_ * t) * integral(t)).imag();
+}
+
+}  // namespace clatter::kernels::modal

@@ -1,0 +1,153 @@
+// The modal source's set-up (003 section 5.4): banks read and indexed, and each object's voice:
+// bank by nu class, nearest entry, base frequency, scale, and the modes it renders.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nanoflann.hpp>
+#include <numbers>
+
+#include "core/errors.hpp"
+#include "io/modal_bank.hpp"
+#include "synth/modal_source.hpp"
+
+namespace clatter::synth {
+
+// The entries' normalized semi-axes as nanoflann's dataset: the nearest-proxy query of 003
+// section 5.4, min ||a' - a-hat||_2.
+struct ModalSource::EntryIndex {
+  struct Points {
+    const model::ModalBank* bank;
+    std::size_t kdtree_get_point_count() const { return bank->entries.size(); }
+    double kdtree_get_pt(std::size_t i, std::size_t d) const { return bank->entries[i].axes_m[d]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const { return false; }
+  };
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Points>, Points, 3, std::size_t>;
+  explicit EntryIndex(const model::ModalBank& bank) : points{&bank}, tree(3, points, nanoflann::KDTreeSingleIndexAdaptorParams(8)) {}
+  std::size_t nearest(const std::array<double, 3>& axes) const {
+    std::size_t index = 0;
+    double distance_sq = 0;
+    tree.knnSearch(axes.data(), 1, &index, &distance_sq);
+    return index;
+  }
+  Points points;
+  Tree tree;
+};
+
+ModalSource::ModalSource(const std::vector<std::string>& paths, ModalOptions options)
+    : ModalSource([&] {
+        std::vector<model::ModalBank> banks;
+        for (const auto& p : paths) banks.push_back(io::read_modal_bank(p));
+        return banks;
+      }(), paths, options) {}
+
+ModalSource::ModalSource(std::vector<model::ModalBank> banks, std::vector<std::string> names, ModalOptions options)
+    : options_(options), banks_(std::move(banks)), names_(std::move(names)) {
+  if (banks_.empty()) throw InputError("modal sound needs at least one modal bank");
+  for (std::size_t b = 0; b < banks_.size(); ++b) {
+    if (banks_[b].entries.empty()) throw InputError(names_[b] + ": the modal bank holds no entries");
+    for (const auto& e : banks_[b].entries)
+      if (e.transfer.order.size() != e.modes())
+        throw InputError(fmt::format("{}: entry {} has no acoustic transfer for its modes", names_[b], e.sample));
+    indices_.push_back(std::make_unique<EntryIndex>(banks_[b]));
+    multipoles_.emplace_back(banks_[b].entries.size());
+  }
+}
+
+ModalSource::~ModalSource() = default;
+
+// The bank of the object's nu class: the nearest nu within the tolerance (docs/materials.md).
+std::size_t ModalSource::bank_for(const io::Scene& scene, const io::SceneObject& o) const {
+  const io::SceneMaterial& m = scene.materials.at(o.material);
+  std::size_t best = 0;
+  double best_d = INFINITY;
+  std::string known;
+  for (std::size_t b = 0; b < banks_.size(); ++b) {
+    const model::Material& bm = banks_[b].header.material;
+    const double d = std::abs(bm.poisson - m.poisson_ratio);
+    if (d < best_d) best_d = d, best = b;
+    known += fmt::format("{}{} (nu {}, {})", b ? ", " : "", bm.name, bm.poisson, names_[b]);
+  }
+  if (!(best_d <= options_.poisson_tolerance))
+    throw InputError(fmt::format("{}: material '{}' (poisson_ratio {}) has no modal bank: the banks given serve nu within {} "
+                                 "of theirs: {}",
+                                 o.where, o.material, m.poisson_ratio, options_.poisson_tolerance, known));
+  if (!m.has_damping)
+    throw InputError(fmt::format("{}: materials.{}: modal sound needs rayleigh_alpha_1_s and rayleigh_beta_s", scene.path, o.material));
+  return best;
+}
+
+ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& model, int rate_hz) {
+  const io::SceneObject& o = *model.object;
+  ModalVoice v;
+  v.bank = bank_for(scene, o);
+  const model::ModalBank& bank = banks_[v.bank];
+  v.frame = kernels::modal::modal_proxy_frame(model.proxy);
+  v.entry = indices_[v.bank]->nearest(v.frame.unit_axes);
+  const model::ModalEntry& e = bank.entries[v.entry];
+  const double pi = std::numbers::pi, omega_p0 = 2 * pi * e.frequencies_hz.front();
+  const double unit_volume_m3 = 4.0 / 3.0 * pi * e.axes_m[0] * e.axes_m[1] * e.axes_m[2];
+  const io::SceneMaterial& mat = scene.materials.at(o.material);
+  const double rho_object = o.mass_kg / o.volume_m3;
+  const double cs_object = std::sqrt(mat.youngs_modulus_pa / (2 * (1 + mat.poisson_ratio) * rho_object));
+  if (o.base_frequency_hz > 0) {
+    v.base_frequency_hz = o.base_frequency_hz;
+    v.base_frequency_from = o.base_frequency_from.empty() ? "scene" : o.base_frequency_from;
+  } else {
+    // The bank's proxy at the object's volume, in the object's material: omega ~ c_s / size.
+    const double size = std::cbrt(o.volume_m3 / unit_volume_m3);
+    v.base_frequency_hz = e.frequencies_hz.front() * cs_object / bank.header.material.shear_speed_m_s() / size;
+    v.base_frequency_from = "proxy";
+  }
+  v.gamma = omega_p0 / (2 * pi * v.base_frequency_hz);
+  // Bank shapes are mass-normalized for the unit proxy (mass M = rho_b V); eq. (9)'s gamma^(-3/2)
+  // and a renormalization to the object's mass m give sqrt(M / m) for every gamma.
+  v.shape_scale = std::sqrt(bank.header.material.rho_kg_m3 * unit_volume_m3 / o.mass_kg);
+  const double top_hz = std::min(options_.max_frequency_hz, 0.45 * rate_hz);
+  for (std::size_t k = 0; k < e.modes(); ++k) {
+    const double f_hz = e.frequencies_hz[k] / v.gamma, omega = 2 * pi * f_hz;
+    const double xi = 0.5 * (mat.rayleigh_alpha_1_s / omega + mat.rayleigh_beta_s * omega);
+    if (f_hz > top_hz)
+      ++v.skipped_high;
+    else if (f_hz < options_.min_frequency_hz)
+      ++v.skipped_low;
+    else if (!(xi < 1))
+      ++v.skipped_overdamped;
+    else {
+      v.modes.push_back(k);
+      v.omega_rad_s.push_back(omega);
+      v.damping_ratio.push_back(xi);
+    }
+  }
+  return v;
+}
+
+const std::vector<kernels::transfer::Multipole>& ModalSource::multipoles(std::size_t b, std::size_t entry) {
+  auto& m = multipoles_[b][entry];
+  if (m.empty()) {
+    const model::ModalEntry& e = banks_[b].entries[entry];
+    for (std::size_t k = 0; k < e.modes(); ++k) m.push_back(kernels::transfer::stored_multipole(e.transfer, k));
+  }
+  return m;
+}
+
+void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& models, int rate_hz) {
+  voices_.clear();
+  resonator_.clear();
+  stats_ = {};
+  for (const ObjectModel& m : models) {
+    voices_.push_back(make_voice(scene, m, rate_hz));
+    const ModalVoice& v = voices_.back();
+    multipoles(v.bank, v.entry);
+    resonator_.emplace_back(v.modes.size() * scene.listeners_m.size(), std::numeric_limits<std::size_t>::max());
+    ++stats_.objects;
+    stats_.modes += v.modes.size();
+    stats_.skipped_high += v.skipped_high;
+    stats_.skipped_low += v.skipped_low;
+    stats_.skipped_overdamped += v.skipped_overdamped;
+    (v.base_frequency_from == "scene" ? stats_.from_scene : v.base_frequency_from == "mesh" ? stats_.from_mesh : stats_.from_proxy)++;
+  }
+  listeners_.assign(scene.listeners_m.size(), kernels::modal::ResonatorBank(rate_hz));
+}
+
+}  // namespace clatter::synth
