@@ -51,7 +51,7 @@ clatter_error_test(bad_probe_rate 0 "--rate -5;must be >= 0 Hz" ${probe_args} --
 clatter_error_test(bad_probe_point_nan 0 "--point 1,nan,0.5;coordinates must be finite" ${probe_args} --point 1,nan,0.5)
 set_tests_properties(bad_probe_rate bad_probe_point_nan PROPERTIES FIXTURES_REQUIRED pan_bank)
 clatter_synth_error_test(bad_synth_option "not expected: --frobnicate;clatter-synth --help" -i ${bad_in}/good.json -b ${good_bank} --frobnicate)
-clatter_synth_error_test(bad_synth_missing_bank "--bank is required" -i ${bad_in}/good.json)
+clatter_synth_error_test(bad_synth_missing_bank "give a PAN bank (-b) or a modal bank (-m), or both" -i ${bad_in}/good.json)
 clatter_synth_error_test(bad_synth_rate "--rate 100;must be in [8000, 384000] Hz" -i ${bad_in}/good.json -b ${good_bank} --rate 100)
 clatter_synth_error_test(bad_synth_format "--format: mp3 not in {float,pcm24}" -i ${bad_in}/good.json -b ${good_bank} --format mp3)
 clatter_synth_error_test(bad_synth_pcm24_range "--format pcm24;beyond the 24-bit range;add --normalize"
@@ -75,11 +75,26 @@ foreach(case
     "negative_time|negative_time.json: events[0]: time -0.01 s: must be >= 0"
     "normal_speed|normal_speed.json: events[0]: normal speed 0 m/s: must be > 0"
     "self_collision|self_collision.json: events[0]: object 1 collides with itself"
-    "no_listeners|no_listeners.json: listeners: expected at least one listener")
+    "no_listeners|no_listeners.json: listeners: expected at least one listener"
+    "base_frequency|base_frequency.json: objects[0].base_frequency_hz: 0: must be > 0"
+    "half_damping|half_damping.json: materials.rock: give both rayleigh_alpha_1_s and rayleigh_beta_s, or neither"
+    "fracture_time|fracture_time.json: events[0]: missing key 'contact_time_s'")
   string(REPLACE "|" ";" parts "${case}")
   list(POP_FRONT parts file)
   clatter_synth_error_test(bad_scene_${file} "${parts}" -i ${bad_in}/${file}.json -b ${good_bank})
 endforeach()
+
+# modal banks (the sphere bank of the synth_modal_bank fixture): no bank for the material's nu, a
+# material without damping, banks of the wrong kind either way, no bank at all
+set(modal_bank ${CMAKE_CURRENT_BINARY_DIR}/synth_sphere/modal.h5)
+clatter_synth_error_test(bad_modal_no_bank "good.json: objects[0]: material 'rock' (poisson_ratio 0.25) has no modal bank;glass (nu 0.2"
+                         -i ${bad_in}/good.json -m ${modal_bank})
+clatter_synth_error_test(bad_modal_no_damping "no_damping.json: materials.rock: modal sound needs rayleigh_alpha_1_s and rayleigh_beta_s"
+                         -i ${bad_in}/no_damping.json -m ${modal_bank})
+clatter_synth_error_test(bad_modal_pan_kind "bank.h5: format 'clatter-pan-bank', expected 'clatter-modal-bank'" -i ${bad_in}/good.json -m ${good_bank})
+clatter_synth_error_test(bad_pan_modal_kind "modal.h5: format 'clatter-modal-bank', expected 'clatter-pan-bank'" -i ${bad_in}/good.json -b ${modal_bank})
+set_tests_properties(bad_modal_no_bank bad_modal_no_damping bad_modal_pan_kind bad_pan_modal_kind
+                     PROPERTIES FIXTURES_REQUIRED "pan_bank;synth_modal_bank")
 
 # OBJ meshes: box.json with box.obj replaced by a broken one
 foreach(case
