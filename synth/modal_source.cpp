@@ -21,13 +21,12 @@ std::vector<double> ModalSource::modal_forces(const Impact& im) const {
   const model::ModalEntry& e = banks_[v.bank].entries[v.entry];
   const Vec3 f = kernels::modal::to_modal_frame(v.frame, im.direction_body);  // R f_0 (003 section 5.2)
   const Vec3 x = kernels::modal::contact_point(e.axes_m, {-f[0], -f[1], -f[2]});
-  const std::vector<Eigen::Vector3d> point{Eigen::Vector3d(x[0], x[1], x[2])};
-  const kernels::transfer::SurfaceInterpolator at(e.axes_m, e.surface_nodes_m, e.surface_faces, point);
+  const kernels::transfer::SurfacePoint at = locators_[v.bank][v.entry]->locate(Eigen::Vector3d(x[0], x[1], x[2]));
   const std::size_t per_mode = 3 * e.surface_nodes_m.size();
   std::vector<double> g;
   g.reserve(v.modes.size());
   for (const std::size_t k : v.modes) {
-    const Eigen::Vector3d u = at.vectors(std::span<const double>(e.shapes.data() + k * per_mode, per_mode)).front();
+    const Eigen::Vector3d u = at.vector(std::span<const double>(e.shapes.data() + k * per_mode, per_mode));
     g.push_back(u.x() * f[0] + u.y() * f[1] + u.z() * f[2]);
   }
   return g;

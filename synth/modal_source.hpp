@@ -14,6 +14,7 @@
 #include "kernels/modal/modal_proxy.hpp"
 #include "kernels/modal/resonator_bank.hpp"
 #include "kernels/transfer/multipole.hpp"
+#include "kernels/transfer/surface_interpolation.hpp"
 #include "model/modal_bank.hpp"
 #include "synth/sources.hpp"
 
@@ -77,6 +78,7 @@ class ModalSource : public SoundSource {
   std::vector<std::string> names_;
   std::vector<std::unique_ptr<EntryIndex>> indices_;
   std::vector<std::vector<std::vector<kernels::transfer::Multipole>>> multipoles_;  // [bank][entry], built on use
+  std::vector<std::vector<std::unique_ptr<kernels::transfer::SurfaceLocator>>> locators_;  // the same
   std::vector<ModalVoice> voices_;
   std::vector<kernels::modal::ResonatorBank> listeners_;     // one resonator bank per listener
   std::vector<std::vector<std::size_t>> resonator_;          // [object][listener * modes + k]

@@ -51,6 +51,7 @@ ModalSource::ModalSource(std::vector<model::ModalBank> banks, std::vector<std::s
         throw InputError(fmt::format("{}: entry {} has no acoustic transfer for its modes", names_[b], e.sample));
     indices_.push_back(std::make_unique<EntryIndex>(banks_[b]));
     multipoles_.emplace_back(banks_[b].entries.size());
+    locators_.emplace_back(banks_[b].entries.size());
   }
 }
 
@@ -124,10 +125,11 @@ ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& mo
 
 const std::vector<kernels::transfer::Multipole>& ModalSource::multipoles(std::size_t b, std::size_t entry) {
   auto& m = multipoles_[b][entry];
-  if (m.empty()) {
-    const model::ModalEntry& e = banks_[b].entries[entry];
+  const model::ModalEntry& e = banks_[b].entries[entry];
+  if (m.empty())
     for (std::size_t k = 0; k < e.modes(); ++k) m.push_back(kernels::transfer::stored_multipole(e.transfer, k));
-  }
+  if (!locators_[b][entry])
+    locators_[b][entry] = std::make_unique<kernels::transfer::SurfaceLocator>(e.axes_m, e.surface_nodes_m, e.surface_faces);
   return m;
 }
 

@@ -40,4 +40,21 @@ double HalfSineResponse::at(double t) const {
   return gain_ * (std::exp(s_ * t) * integral(t)).imag();
 }
 
+void HalfSineResponse::add_contact_samples(double t0, double dt, std::size_t count, double weight, double* out) const {
+  const std::complex<double> i{0, 1}, a = i * omega_force_ - s_, b = -i * omega_force_ - s_;
+  // A mode tuned to the pulse (|a tau| small) has a -> 0: the closed form per sample keeps the limit.
+  if (std::abs(a) * tau_s_ < 1e-3 || std::abs(b) * tau_s_ < 1e-3) {
+    for (std::size_t n = 0; n < count; ++n) out[n] += weight * at(t0 + static_cast<double>(n) * dt);
+    return;
+  }
+  const std::complex<double> c = gain_ * weight / (2.0 * i), ca = c / a, cb = c / b;
+  std::complex<double> forced = std::exp(i * omega_force_ * t0), decay = std::exp(s_ * t0);
+  const std::complex<double> forced_step = std::exp(i * omega_force_ * dt), decay_step = std::exp(s_ * dt);
+  for (std::size_t n = 0; n < count; ++n) {
+    out[n] += (ca * (forced - decay) - cb * (std::conj(forced) - decay)).imag();
+    forced *= forced_step;
+    decay *= decay_step;
+  }
+}
+
 }  // namespace clatter::kernels::modal

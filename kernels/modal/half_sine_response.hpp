@@ -8,6 +8,7 @@
 // the contact q(t) = Im(C e^{s t}) with the constant phasor C, a damped sinusoid that a two-pole
 // recursion carries exactly (kernels/modal/resonator_bank.hpp).
 #include <complex>
+#include <cstddef>
 
 namespace clatter::kernels::modal {
 
@@ -18,6 +19,10 @@ class HalfSineResponse {
   HalfSineResponse(double omega_rad_s, double xi, double tau_s, double amplitude);
 
   double at(double t_s) const;                      // q(t) since the contact began, 0 for t < 0
+  // out[n] += weight q(t_first + n dt) for n < count, all within [0, tau]: e^{s t} I(t) is a sum of
+  // three exponentials, (e^{i W t} - e^{s t}) / a - (e^{-i W t} - e^{s t}) / b over 2i with
+  // a, b = +-i W - s, so consecutive samples cost three complex products instead of exponentials.
+  void add_contact_samples(double t_first_s, double dt_s, std::size_t count, double weight, double* out) const;
   std::complex<double> free_phasor() const { return free_; }  // C: q(t) = Im(C e^{s t}) for t >= tau
   std::complex<double> pole() const { return s_; }  // s [1/s]
   double contact_time_s() const { return tau_s_; }

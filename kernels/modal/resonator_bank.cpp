@@ -14,7 +14,12 @@ using Lanes = std::array<double, kLanes>;
 
 // Samples [n0, n1) of eight resonators in lockstep. The state lives in locals so that it stays in
 // registers (out may alias nothing here, but the compiler cannot know that of array members), and
-// the lanes are summed as a fixed tree: vectorizable, and the same bits on every CPU.
+// the lanes are summed as a fixed tree: vectorizable, and the same bits on every CPU. Cloned for
+// wider vectors where the CPU has them (chosen at load time); with -ffp-contract=off no clone
+// fuses a multiply-add, so every clone rounds the same way.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 void step(const Lanes& a1, const Lanes& a2, Lanes& y1_io, Lanes& y2_io, double* out, std::int64_t n0, std::int64_t n1) {
   Lanes y1 = y1_io, y2 = y2_io;
   for (std::int64_t n = n0; n < n1; ++n) {
@@ -44,8 +49,10 @@ void ResonatorBank::excite(std::size_t r, double t0, const HalfSineResponse& q, 
   const auto samples = static_cast<std::int64_t>(out.size());
   const auto first = static_cast<std::int64_t>(std::ceil(t0 * rate_hz_));
   const auto after = static_cast<std::int64_t>(std::ceil((t0 + q.contact_time_s()) * rate_hz_));
-  for (std::int64_t n = std::max<std::int64_t>(first, 0); n < std::min(after, samples); ++n)
-    out[static_cast<std::size_t>(n)] += weight * q.at(static_cast<double>(n) / rate_hz_ - t0);
+  const std::int64_t begin = std::max<std::int64_t>(first, 0), end = std::min(after, samples);
+  if (end > begin)
+    q.add_contact_samples(static_cast<double>(begin) / rate_hz_ - t0, 1 / rate_hz_, static_cast<std::size_t>(end - begin), weight,
+                          out.data() + begin);
   if (after < samples) inject(r, after, weight * q.free_phasor(), t0);
 }
 

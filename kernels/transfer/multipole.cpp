@@ -28,19 +28,25 @@ void pressure_magnitudes(const std::vector<Multipole>& modes, const Eigen::Vecto
   int top = 0;
   for (const Multipole& m : modes) top = std::max(top, m.order);
   const double r = x_m.norm();
-  std::vector<std::complex<double>> y(static_cast<std::size_t>(harmonic_count(top)));
+  std::vector<std::complex<double>> y(static_cast<std::size_t>(harmonic_count(top))), h(static_cast<std::size_t>(top) + 1);
   spherical_harmonics(top, x_m.z() / r, std::atan2(x_m.y(), x_m.x()), y.data());
   for (std::size_t k = 0; k < modes.size(); ++k) {
     const Multipole& m = modes[k];
-    const auto h = spherical_hankel2(m.order, m.k_rad_m * r);
-    std::complex<double> p = 0;
+    spherical_hankel2_upward(m.order, m.k_rad_m * r, h.data());
+    // Real arithmetic: std::complex products check for NaN on every term (no -fcx-limited-range).
+    double p_re = 0, p_im = 0;
     for (int n = 0; n <= m.order; ++n) {
-      std::complex<double> s = 0;
-      for (int i = harmonic_index(n, -n); i <= harmonic_index(n, n); ++i)
-        s += m.coefficients[static_cast<std::size_t>(i)] * y[static_cast<std::size_t>(i)];
-      p += h[static_cast<std::size_t>(n)] * s;
+      double s_re = 0, s_im = 0;
+      for (int i = harmonic_index(n, -n); i <= harmonic_index(n, n); ++i) {
+        const std::complex<double> c = m.coefficients[static_cast<std::size_t>(i)], v = y[static_cast<std::size_t>(i)];
+        s_re += c.real() * v.real() - c.imag() * v.imag();
+        s_im += c.real() * v.imag() + c.imag() * v.real();
+      }
+      const std::complex<double> hn = h[static_cast<std::size_t>(n)];
+      p_re += hn.real() * s_re - hn.imag() * s_im;
+      p_im += hn.real() * s_im + hn.imag() * s_re;
     }
-    out[k] = std::abs(p);
+    out[k] = std::hypot(p_re, p_im);
   }
 }
 

@@ -55,6 +55,13 @@ std::vector<std::complex<double>> spherical_hankel2(int n_max, double x) {
   return h;
 }
 
+void spherical_hankel2_upward(int n_max, double x, std::complex<double>* out) {
+  const std::complex<double> e = std::exp(std::complex<double>(0, -x)) / x;
+  out[0] = std::complex<double>(0, 1) * e;
+  if (n_max >= 1) out[1] = std::complex<double>(-1, 1 / x) * e;
+  for (int n = 1; n < n_max; ++n) out[n + 1] = (2.0 * n + 1) / x * out[n] - out[n - 1];
+}
+
 std::vector<std::complex<double>> spherical_hankel2_derivative(const std::vector<std::complex<double>>& h, double x) {
   std::vector<std::complex<double>> d(h.size());
   if (h.empty()) return d;

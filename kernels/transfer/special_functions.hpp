@@ -20,6 +20,12 @@ std::vector<double> spherical_bessel_y(int n_max, double x);
 // (free-space Green's function e^{-ikr} / (4 pi r)).
 std::vector<std::complex<double>> spherical_hankel2(int n_max, double x);
 
+// The same into out[0..n_max] by the upward recurrence h_{n+1} = (2n+1)/x h_n - h_{n-1} from
+// h_0 = i e^{-ix}/x, h_1 = (i/x - 1) e^{-ix}/x: h_n itself is dominant (y_n grows past n > x), so
+// every h_n keeps its relative accuracy, without Miller's start above x. Its j_n part alone does
+// not (use spherical_bessel_j for that). For expansions evaluated outside their sources.
+void spherical_hankel2_upward(int n_max, double x, std::complex<double>* out);
+
 // d/dx h_n^(2)(x) from h_{n-1} - (n + 1) / x h_n (n >= 1) and h_0' = -h_1.
 std::vector<std::complex<double>> spherical_hankel2_derivative(const std::vector<std::complex<double>>& h, double x);
 

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -98,56 +99,84 @@ double surface_node_spacing_m(std::span<const std::array<double, 3>> nodes_m,
   return faces.empty() ? 0.0 : sum / (3.0 * static_cast<double>(faces.size())) / 2;
 }
 
-SurfaceInterpolator::SurfaceInterpolator(const std::array<double, 3>& axes_m,
-                                         std::span<const std::array<double, 3>> nodes_m,
-                                         std::span<const std::array<std::int32_t, 6>> faces,
-                                         std::span<const Eigen::Vector3d> points) {
-  const Eigen::Vector3d inverse(1 / axes_m[0], 1 / axes_m[1], 1 / axes_m[2]);
-  const auto to_sphere = [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(x.cwiseProduct(inverse).normalized()); };
+struct SurfaceLocator::Impl {
+  Eigen::Vector3d inverse_axes;
+  std::span<const std::array<double, 3>> nodes_m;
+  std::span<const std::array<std::int32_t, 6>> faces;
+  std::vector<Eigen::Matrix3d> inverses;  // per face: unit-sphere corners -> barycentric
+  std::optional<FaceGrid> grid;
+  Eigen::Vector3d to_sphere(const Eigen::Vector3d& x) const { return x.cwiseProduct(inverse_axes).normalized(); }
+};
+
+SurfaceLocator::SurfaceLocator(const std::array<double, 3>& axes_m, std::span<const std::array<double, 3>> nodes_m,
+                               std::span<const std::array<std::int32_t, 6>> faces)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.inverse_axes = {1 / axes_m[0], 1 / axes_m[1], 1 / axes_m[2]};
+  m.nodes_m = nodes_m;
+  m.faces = faces;
   std::vector<std::array<Eigen::Vector3d, 3>> corners(faces.size());
-  std::vector<Eigen::Matrix3d> inverses(faces.size());
+  m.inverses.resize(faces.size());
   for (std::size_t f = 0; f < faces.size(); ++f) {
-    Eigen::Matrix3d m;
+    Eigen::Matrix3d c;
     for (int k = 0; k < 3; ++k) {
       const auto& n = nodes_m[static_cast<std::size_t>(faces[f][static_cast<std::size_t>(k)])];
-      corners[f][static_cast<std::size_t>(k)] = to_sphere({n[0], n[1], n[2]});
-      m.col(k) = corners[f][static_cast<std::size_t>(k)];
+      corners[f][static_cast<std::size_t>(k)] = m.to_sphere({n[0], n[1], n[2]});
+      c.col(k) = corners[f][static_cast<std::size_t>(k)];
     }
-    inverses[f] = m.inverse();
+    m.inverses[f] = c.inverse();
   }
-  const FaceGrid grid(corners);
-  for (const auto& x : points) {
-    const Eigen::Vector3d q = to_sphere(x);
-    int best = -1;
-    double best_min = -1e300;
-    Eigen::Vector3d best_l = Eigen::Vector3d::Zero();
-    for (int f : grid.faces_near(q)) {
-      Eigen::Vector3d l = inverses[static_cast<std::size_t>(f)] * q;
-      if (l.sum() <= 0) continue;  // the ray meets the far side
-      l /= l.sum();
-      if (l.minCoeff() > best_min) {
-        best_min = l.minCoeff();
-        best = f;
-        best_l = l;
-      }
+  m.grid.emplace(corners);
+}
+
+SurfaceLocator::~SurfaceLocator() = default;
+SurfaceLocator::SurfaceLocator(SurfaceLocator&&) noexcept = default;
+SurfaceLocator& SurfaceLocator::operator=(SurfaceLocator&&) noexcept = default;
+
+SurfacePoint SurfaceLocator::locate(const Eigen::Vector3d& x) const {
+  const Impl& m = *impl_;
+  const Eigen::Vector3d q = m.to_sphere(x);
+  int best = -1;
+  double best_min = -1e300;
+  Eigen::Vector3d best_l = Eigen::Vector3d::Zero();
+  for (int f : m.grid->faces_near(q)) {
+    Eigen::Vector3d l = m.inverses[static_cast<std::size_t>(f)] * q;
+    if (l.sum() <= 0) continue;  // the ray meets the far side
+    l /= l.sum();
+    if (l.minCoeff() > best_min) {
+      best_min = l.minCoeff();
+      best = f;
+      best_l = l;
     }
-    if (best < 0 || best_min < -1e-6)
-      throw std::runtime_error("surface interpolation: a point of the ellipsoid lies on no face of its mesh (min "
-                               "barycentric " + std::to_string(best_min) + ")");
-    const auto& face = faces[static_cast<std::size_t>(best)];
-    const Eigen::Vector3d l = refine_on_curved_face(nodes_m, face, x, best_l.cwiseMax(0.0) / best_l.cwiseMax(0.0).sum());
-    nodes_of_point_.push_back(face);
-    weights_.push_back(shape_functions(l));
   }
+  if (best < 0 || best_min < -1e-6)
+    throw std::runtime_error("surface interpolation: a point of the ellipsoid lies on no face of its mesh (min "
+                             "barycentric " + std::to_string(best_min) + ")");
+  const auto& face = m.faces[static_cast<std::size_t>(best)];
+  const Eigen::Vector3d l = refine_on_curved_face(m.nodes_m, face, x, best_l.cwiseMax(0.0) / best_l.cwiseMax(0.0).sum());
+  return {face, shape_functions(l)};
+}
+
+Eigen::Vector3d SurfacePoint::vector(std::span<const double> nodal) const {
+  Eigen::Vector3d out = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < 6; ++k) {
+    const auto at = 3 * static_cast<std::size_t>(nodes[k]);
+    out += weights[k] * Eigen::Vector3d(nodal[at], nodal[at + 1], nodal[at + 2]);
+  }
+  return out;
+}
+
+SurfaceInterpolator::SurfaceInterpolator(const std::array<double, 3>& axes_m, std::span<const std::array<double, 3>> nodes_m,
+                                         std::span<const std::array<std::int32_t, 6>> faces,
+                                         std::span<const Eigen::Vector3d> points) {
+  const SurfaceLocator locator(axes_m, nodes_m, faces);
+  for (const auto& x : points) points_.push_back(locator.locate(x));
 }
 
 std::vector<Eigen::Vector3d> SurfaceInterpolator::vectors(std::span<const double> nodal) const {
-  std::vector<Eigen::Vector3d> out(weights_.size(), Eigen::Vector3d::Zero());
-  for (std::size_t i = 0; i < weights_.size(); ++i)
-    for (std::size_t k = 0; k < 6; ++k) {
-      const auto at = 3 * static_cast<std::size_t>(nodes_of_point_[i][k]);
-      out[i] += weights_[i][k] * Eigen::Vector3d(nodal[at], nodal[at + 1], nodal[at + 2]);
-    }
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(points_.size());
+  for (const auto& p : points_) out.push_back(p.vector(nodal));
   return out;
 }
 

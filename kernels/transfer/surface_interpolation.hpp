@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -17,6 +18,29 @@ namespace clatter::kernels::transfer {
 double surface_node_spacing_m(std::span<const std::array<double, 3>> nodes_m,
                               std::span<const std::array<std::int32_t, 6>> faces);
 
+// Where a point of the ellipsoid lies on the mesh: a face's six nodes and their shape functions.
+struct SurfacePoint {
+  std::array<std::int32_t, 6> nodes{};
+  std::array<double, 6> weights{};
+  Eigen::Vector3d vector(std::span<const double> nodal) const;  // nodal: [node][3]
+};
+
+// The mesh's faces as seen from the centre, built once (the synthesizer locates a contact point
+// per impact); the spans must outlive it.
+class SurfaceLocator {
+ public:
+  SurfaceLocator(const std::array<double, 3>& axes_m, std::span<const std::array<double, 3>> nodes_m,
+                 std::span<const std::array<std::int32_t, 6>> faces);
+  ~SurfaceLocator();
+  SurfaceLocator(SurfaceLocator&&) noexcept;
+  SurfaceLocator& operator=(SurfaceLocator&&) noexcept;
+  SurfacePoint locate(const Eigen::Vector3d& x_m) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 class SurfaceInterpolator {
  public:
   SurfaceInterpolator(const std::array<double, 3>& axes_m, std::span<const std::array<double, 3>> nodes_m,
@@ -26,8 +50,7 @@ class SurfaceInterpolator {
   std::vector<Eigen::Vector3d> vectors(std::span<const double> nodal) const;
 
  private:
-  std::vector<std::array<std::int32_t, 6>> nodes_of_point_;
-  std::vector<std::array<double, 6>> weights_;
+  std::vector<SurfacePoint> points_;
 };
 
 }  // namespace clatter::kernels::transfer
