@@ -1,9 +1,10 @@
 // clatter-synth-bench: the paper's largest example at full size (Chadwick et al. 2012, "Rock pile
 // (large)": 1000 rocks, 210,741 impulses over 6 s, 192 s to synthesize there). A seeded generator
 // makes a scene of that size in memory; the acceleration noise is rendered at 44.1 kHz on one
-// core, REPEATS times. Prints the median wall time, impacts per second, the split between the
-// stages of an impact (docs/benchmarks.md) and the peak resident memory.
-// Usage: clatter-synth-bench BANK [REPEATS=5] [EVENTS=210741]
+// core, REPEATS times; with a modal bank, the rocks' modes too. Prints the median wall time,
+// impacts per second, the split between the stages of an impact (docs/benchmarks.md) and the peak
+// resident memory.
+// Usage: clatter-synth-bench BANK [REPEATS=5] [EVENTS=210741] [MODAL_BANK]
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -12,10 +13,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/stage_log.hpp"
+#include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
 
 using namespace clatter;
@@ -27,7 +30,7 @@ io::Scene rock_pile(std::size_t n_objects, std::size_t n_events, double duration
   std::uniform_real_distribution<double> u(0.0, 1.0);
   io::Scene s;
   s.path = "generated rock pile";
-  s.materials["granite"] = {5e10, 0.25};
+  s.materials["granite"] = {5e10, 0.2, true, 6.0, 1e-7};  // nu of the glass-class modal bank (docs/materials.md)
   s.materials["concrete"] = {3e10, 0.2};
   s.ground_material = "concrete";
   const double pi = 3.14159265358979323846, rho = 2700;
@@ -72,7 +75,7 @@ io::Scene rock_pile(std::size_t n_objects, std::size_t n_events, double duration
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: clatter-synth-bench BANK [REPEATS=5] [EVENTS=210741]\n");
+    std::fprintf(stderr, "usage: clatter-synth-bench BANK [REPEATS=5] [EVENTS=210741] [MODAL_BANK]\n");
     return 2;
   }
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 5;
@@ -80,12 +83,16 @@ int main(int argc, char** argv) {
   const io::Scene scene = rock_pile(1000, events, 6.0);
   const auto t_load = std::chrono::steady_clock::now();
   synth::PanSource pan(argv[1]);
+  std::unique_ptr<synth::ModalSource> modal;
+  if (argc > 4) modal = std::make_unique<synth::ModalSource>(std::vector<std::string>{argv[4]});
+  std::vector<synth::SoundSource*> sources{&pan};
+  if (modal) sources.push_back(modal.get());
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
   std::vector<double> walls;
   synth::RenderStats stats;
   for (int r = 0; r < repeats; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
-    const auto out = synth::render_scene(scene, {&pan}, {}, &stats);
+    const auto out = synth::render_scene(scene, sources, {}, &stats);
     walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     std::printf("run %d: %.3f s (%zu impacts, %zu samples)\n", r + 1, walls.back(), stats.impacts, out[0][0].size());
   }
@@ -95,7 +102,10 @@ int main(int argc, char** argv) {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   std::printf("rock pile: 1000 objects, %zu events -> %zu impacts, 6.1 s at 44.1 kHz, 1 core\n", events, stats.impacts);
-  std::printf("  bank load: %.3f s (%s)\n", load_s, argv[1]);
+  std::printf("  bank load: %.3f s (%s%s%s)\n", load_s, argv[1], modal ? " and " : "", modal ? argv[4] : "");
+  if (modal)
+    std::printf("  modal: %zu modes rendered, %zu above 20 kHz skipped; %zu excitations, %.3g mode-samples\n", modal->stats().modes,
+                modal->stats().skipped_high, modal->stats().excitations, static_cast<double>(modal->stats().resonators.mode_samples));
   std::printf("  render: median %.3f s of %d (min %.3f, max %.3f): %.3g impacts/s; %.0fx faster than the paper's 192 s\n",
               median, repeats, sorted.front(), sorted.back(), static_cast<double>(stats.impacts) / median, 192.0 / median);
   std::printf("  peak resident memory: %.1f MiB\n", static_cast<double>(usage.ru_maxrss) / 1024.0);

@@ -41,8 +41,7 @@ void ModalSource::add(const Impact& im, const std::vector<Vec3>& listeners, int 
   for (std::size_t k = 0; k < v.modes.size(); ++k)
     if (g[k] != 0)
       response[k].emplace(v.omega_rad_s[k], v.damping_ratio[k], im.tau_s, im.peak_force_n * v.shape_scale * g[k]);
-  const auto& transfer = multipoles_[v.bank][v.entry];
-  std::vector<double> p(e.modes());
+  std::vector<double> p(v.modes.size());
   const double c_air = banks_[v.bank].header.transfer.sound_speed_m_s;
   const Vec3& x0 = im.pose.position_m;
   for (std::size_t l = 0; l < listeners.size(); ++l) {
@@ -55,13 +54,13 @@ void ModalSource::add(const Impact& im, const std::vector<Vec3>& listeners, int 
                                    "holds beyond {:.4g} m (twice its largest semi-axis)",
                                    listeners[l][0], listeners[l][1], listeners[l][2], r_m, im.model->object->id, im.t_s,
                                    2 * e.axes_m[2] * v.gamma));
-    kernels::transfer::pressure_magnitudes(transfer, Eigen::Vector3d(vp[0], vp[1], vp[2]) / v.gamma, p.data());
+    kernels::transfer::pressure_magnitudes(v.transfer, Eigen::Vector3d(vp[0], vp[1], vp[2]) / v.gamma, p.data());
     const double t0_s = im.t_s + r_m / c_air;  // the sound leaves the proxy's centre at contact
     const double destroyed_s = im.model->object->destroyed_s;  // its modes stop (heard r / c later)
     const auto stop = std::isfinite(destroyed_s) ? static_cast<std::int64_t>(std::ceil((destroyed_s + r_m / c_air) * rate_hz))
                                                  : std::numeric_limits<std::int64_t>::max();
     for (std::size_t k = 0; k < v.modes.size(); ++k) {
-      const double weight = v.shape_scale / v.gamma * p[v.modes[k]];  // p_gamma(gamma x) = (s / gamma) p(x)
+      const double weight = v.shape_scale / v.gamma * p[k];  // p_gamma(gamma x) = (s / gamma) p(x)
       if (!response[k] || !(weight > 0)) {
         ++stats_.silent_modes;
         continue;

@@ -37,6 +37,7 @@ struct ModalVoice {
   double shape_scale = 1;           // sqrt(M_unit / m): bank shapes -> the object's (it carries m)
   std::vector<std::size_t> modes;   // entry modes rendered
   std::vector<double> omega_rad_s, damping_ratio;  // of those, scaled and in the object's material
+  std::vector<const kernels::transfer::Multipole*> transfer;  // of those, the bank's (unscaled)
   std::size_t skipped_high = 0, skipped_low = 0, skipped_overdamped = 0;
 };
 

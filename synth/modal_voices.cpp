@@ -139,8 +139,9 @@ void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& 
   stats_ = {};
   for (const ObjectModel& m : models) {
     voices_.push_back(make_voice(scene, m, rate_hz));
-    const ModalVoice& v = voices_.back();
-    multipoles(v.bank, v.entry);
+    ModalVoice& v = voices_.back();
+    const auto& all = multipoles(v.bank, v.entry);
+    for (const std::size_t k : v.modes) v.transfer.push_back(&all[k]);
     resonator_.emplace_back(v.modes.size() * scene.listeners_m.size(), std::numeric_limits<std::size_t>::max());
     ++stats_.objects;
     stats_.modes += v.modes.size();

@@ -24,14 +24,14 @@ std::complex<double> Multipole::pressure(const Eigen::Vector3d& x_m) const {
   return p;
 }
 
-void pressure_magnitudes(const std::vector<Multipole>& modes, const Eigen::Vector3d& x_m, double* out) {
+void pressure_magnitudes(std::span<const Multipole* const> modes, const Eigen::Vector3d& x_m, double* out) {
   int top = 0;
-  for (const Multipole& m : modes) top = std::max(top, m.order);
+  for (const Multipole* m : modes) top = std::max(top, m->order);
   const double r = x_m.norm();
   std::vector<std::complex<double>> y(static_cast<std::size_t>(harmonic_count(top))), h(static_cast<std::size_t>(top) + 1);
   spherical_harmonics(top, x_m.z() / r, std::atan2(x_m.y(), x_m.x()), y.data());
   for (std::size_t k = 0; k < modes.size(); ++k) {
-    const Multipole& m = modes[k];
+    const Multipole& m = *modes[k];
     spherical_hankel2_upward(m.order, m.k_rad_m * r, h.data());
     // Real arithmetic: std::complex products check for NaN on every term (no -fcx-limited-range).
     double p_re = 0, p_im = 0;

@@ -6,6 +6,7 @@
 // modal amplitude.
 #include <Eigen/Core>
 #include <complex>
+#include <span>
 #include <vector>
 
 #include "model/modal_bank.hpp"
@@ -22,7 +23,7 @@ struct Multipole {
 
 // |p(x)| of several expansions about the same centre (a proxy's modes at one listener): the
 // harmonics are evaluated once, at the highest order, and each mode adds only its Hankel terms.
-void pressure_magnitudes(const std::vector<Multipole>& modes, const Eigen::Vector3d& x_m, double* out);
+void pressure_magnitudes(std::span<const Multipole* const> modes, const Eigen::Vector3d& x_m, double* out);
 
 // Adds to `coefficients` (size harmonic_count(order)) the expansion of a monopole
 // strength * e^{-ik|x - y|} / (4 pi |x - y|) at y (valid for |x| > |y|):
