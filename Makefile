@@ -1,7 +1,8 @@
 # The two commands a new user runs: `make demo` and `make test`. Both install missing Debian
 # packages (cluster/install-deps.sh), configure with a CMake preset and build.
 #   make demo                 a 3-proxy PAN bank and a 3-ellipsoid modal bank on 2 ranks (out/demo/),
-#                             their summaries, and the PAN demo scene rendered
+#                             their summaries, and the demo scene rendered with PAN and modal sound
+#                             (out/demo/debris.wav, its stems and spectrogram)
 #   make test                 every test (ctest), in build/$(PRESET), then `make fuzz`
 #   make fuzz                 the libFuzzer harnesses of the readers, 30 s each (preset fuzz, clang-14)
 #   make bench                Google Benchmark suite, JSON in out/bench/
@@ -34,10 +35,11 @@ build: deps $(BUILD)/CMakeCache.txt
 demo: build
 	mpiexec -n 2 $(BUILD)/bin/clatter-bank pan -c configs/pan-demo.toml -o out/demo/bank.h5 --log-view
 	$(BUILD)/bin/clatter-bank info out/demo/bank.h5
-	$(BUILD)/bin/clatter-synth -i scenes/demo.json -b out/demo/bank.h5 -o out/demo/debris.wav
 	mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-demo.toml -o out/demo/modal.h5 --log-view
 	$(BUILD)/bin/clatter-bank info out/demo/modal.h5
 	$(BUILD)/bin/clatter-bank probe out/demo/modal.h5 --entry 0 --point 1,2,2 | head -6
+	$(BUILD)/bin/clatter-synth -i scenes/demo.json -b out/demo/bank.h5 -m out/demo/modal.h5 -o out/demo/debris.wav --stems
+	$(PYTHON) analysis/spectrogram.py out/demo/debris.wav
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300
@@ -58,6 +60,9 @@ bench: build
 	bench/fdtd.sh $(BUILD) 3 | tee out/bench/fdtd.txt
 	test -f out/bench/pan.h5 || mpiexec -n 2 $(BUILD)/bin/clatter-bank pan -o out/bench/pan.h5
 	$(BUILD)/bin/clatter-synth-bench out/bench/pan.h5 5 | tee out/bench/synth.txt
+	test -f out/bench/modal.h5 || mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-demo.toml -o out/bench/modal.h5
+	$(BUILD)/bin/clatter-synth-bench out/bench/pan.h5 5 210741 out/bench/modal.h5 | tee out/bench/synth-modal.txt
+	$(BUILD)/bin/clatter-synth-table-bench out/bench/modal.h5 5 | tee out/bench/synth-table.txt
 
 clean:
 	rm -rf build out

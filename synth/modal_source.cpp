@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "core/rotation.hpp"
+#include "core/stage_log.hpp"
 #include "kernels/transfer/surface_interpolation.hpp"
 #include "synth/modal_source.hpp"
 
@@ -75,6 +76,7 @@ void ModalSource::add(const Impact& im, const std::vector<Vec3>& listeners, int 
 }
 
 void ModalSource::finish(std::vector<std::vector<double>>& out) {
+  Stage stage("modal ringing");  // the resonators, after the event loop (the stage table's own line)
   for (std::size_t l = 0; l < listeners_.size(); ++l) {
     const kernels::modal::ResonatorCounts c = listeners_[l].render(options_.relative_floor, out[l]);
     stats_.resonators.resonators += c.resonators;

@@ -28,7 +28,7 @@ done
 
 # What the commands promise, checked on what they left (independent of the code: h5py and text).
 need() { [[ -s $1 ]] || fail "$1 was not made"; }
-for f in out/field.h5 out/big.h5 out/raw.h5 out/bank.h5 my.toml pan.sbatch out/debris.wav; do need "$f"; done
+for f in out/field.h5 out/big.h5 out/raw.h5 out/bank.h5 my.toml pan.sbatch out/debris.wav out/rings.wav out/rings.pan.wav out/rings.modal.wav; do need "$f"; done
 "$python" - <<'PY' || fail "the HDF5 outputs are not what the README says"
 import h5py
 for path, fmt in [("out/field.h5", "clatter-field"), ("out/big.h5", "clatter-field"),
