@@ -3,16 +3,24 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <stdexcept>
+#include <tuple>
 
 #include "core/errors.hpp"
 #include "io/mesh.hpp"
+#include "kernels/fem/lowest_mode.hpp"
 #include "kernels/mass_properties.hpp"
 
 namespace clatter::synth {
 namespace {
 
+struct Solid {
+  io::TriangleMesh mesh;
+  kernels::MeshMassProperties props;
+};
+
 // The uniform solid a mesh file bounds; `where` names the object for messages.
-kernels::MeshMassProperties solid_of(const std::string& mesh_path, const std::string& where) {
+Solid solid_of(const std::string& mesh_path, const std::string& where) {
   io::TriangleMesh mesh;
   try {
     mesh = io::read_obj(mesh_path);
@@ -23,7 +31,24 @@ kernels::MeshMassProperties solid_of(const std::string& mesh_path, const std::st
   if (!(props.volume_m3 > 0))
     throw InputError(fmt::format("{}.mesh: {} encloses a signed volume of {} m^3: faces must wind counter-clockwise seen from outside",
                                  where, mesh_path, props.volume_m3));
-  return props;
+  return {std::move(mesh), props};
+}
+
+// omega_0 of the object's solid in its material, computed once per mesh file and material.
+double base_frequency_hz(const io::Scene& scene, const io::SceneObject& o, const Solid& solid,
+                         std::map<std::tuple<std::string, double, double, double>, double>& cache) {
+  const io::SceneMaterial& m = scene.materials.at(o.material);
+  const double rho = o.mass_kg / o.volume_m3;
+  const auto key = std::make_tuple(o.mesh_path, m.youngs_modulus_pa, m.poisson_ratio, rho);
+  const auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  try {
+    const double f = kernels::fem::lowest_free_mode(solid.mesh.vertices_m, solid.mesh.triangles, m.youngs_modulus_pa,
+                                                    m.poisson_ratio, rho).frequency_hz;
+    return cache[key] = f;
+  } catch (const std::invalid_argument& e) {
+    throw InputError(fmt::format("{}.mesh: {}: its lowest mode: {}", o.where, o.mesh_path, e.what()));
+  }
 }
 
 void set_mass_properties(io::SceneObject& o, const kernels::MeshMassProperties& solid) {
@@ -37,14 +62,19 @@ void set_mass_properties(io::SceneObject& o, const kernels::MeshMassProperties& 
 
 }  // namespace
 
-io::Scene load_scene(const std::string& scene_path, const std::string& impulses_path) {
+io::Scene load_scene(const std::string& scene_path, const std::string& impulses_path, bool base_frequencies) {
   io::Scene scene = io::read_scene(scene_path, impulses_path.empty());
-  std::map<std::string, kernels::MeshMassProperties> solids;  // debris often shares a few meshes
+  std::map<std::string, Solid> solids;  // debris often shares a few meshes
+  std::map<std::tuple<std::string, double, double, double>, double> frequencies;
   for (auto& o : scene.objects) {
     if (o.mesh_path.empty()) continue;
     auto it = solids.find(o.mesh_path);
     if (it == solids.end()) it = solids.emplace(o.mesh_path, solid_of(o.mesh_path, o.where)).first;
-    set_mass_properties(o, it->second);
+    set_mass_properties(o, it->second.props);
+    if (base_frequencies && !(o.base_frequency_hz > 0)) {
+      o.base_frequency_hz = base_frequency_hz(scene, o, it->second, frequencies);
+      o.base_frequency_from = "mesh";
+    }
   }
   // Rest-pose contact points need the centres of mass, hence after the meshes.
   if (!impulses_path.empty()) io::read_impulse_events(impulses_path, scene);

@@ -54,7 +54,7 @@ int run(const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   if (o.rate_hz < 8000 || o.rate_hz > 384000) throw InputError(fmt::format("--rate {}: must be in [8000, 384000] Hz", o.rate_hz));
   if (o.bank.empty() && o.modal_banks.empty()) throw InputError("give a PAN bank (-b) or a modal bank (-m), or both");
-  const io::Scene scene = synth::load_scene(o.scene, o.impulses);
+  const io::Scene scene = synth::load_scene(o.scene, o.impulses, !o.modal_banks.empty());
   std::vector<std::unique_ptr<synth::SoundSource>> owned;
   synth::ModalSource* modal = nullptr;
   if (!o.bank.empty()) owned.push_back(std::make_unique<synth::PanSource>(o.bank));

@@ -102,6 +102,28 @@ check(dev < 1e-6 and np.abs(pan).max() > 0 and np.abs(mod).max() > 0, f"mix = pa
 check("pan    peak" in r.stdout and "modal  peak" in r.stdout and "modes rendered" in r.stdout,
       "summary names each source's peak and RMS and the modes rendered")
 
+# ---- where the base frequency comes from: a mesh object (a 0.4 x 0.3 x 0.25 m box OBJ), the same
+# with base_frequency_hz given, and one given by numbers
+with open("box.obj", "w") as f:
+    a, b, c = 0.4, 0.3, 0.25
+    for i in range(8):
+        f.write(f"v {a if i & 1 else 0} {b if i & 2 else 0} {c if i & 4 else 0}\n")
+    for t in [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4), (2, 6, 7), (2, 7, 3), (0, 4, 6),
+              (0, 6, 2), (1, 3, 7), (1, 7, 5)]:
+        f.write("f " + " ".join(str(k + 1) for k in t) + "\n")
+mesh_scene = json.loads(json.dumps(scene))
+mesh_scene["objects"] = [{"id": 1, "mesh": "box.obj", "density_kg_m3": 2600, "material": "glass"},
+                         {"id": 2, "mesh": "box.obj", "density_kg_m3": 2600, "material": "glass", "base_frequency_hz": 3000},
+                         dict(scene["objects"][0], id=3)]
+mesh_scene["events"] = [dict(e, a=k + 1) for k, e in enumerate(scene["events"] * 3)]
+for e in mesh_scene["events"]:
+    e["pose_a"] = {"position_m": [0, 0, 0], "orientation_wxyz": [1, 0, 0, 0]}
+mesh_scene["listeners"] = [{"position_m": [2.0, 4.0, 4.0]}]
+json.dump(mesh_scene, open("mesh.json", "w"))
+r = subprocess.run([synth, "-i", "mesh.json", "-m", modal_bank, "-o", "mesh.wav"], capture_output=True, text=True)
+check(r.returncode == 0 and "base frequency from the scene 1, the mesh 1, the proxy 1" in r.stdout,
+      f"base frequencies: one from the scene, one from the mesh's FEM, one from the proxy ({r.stderr.strip()})")
+
 # ---- a modal bank of another version
 shutil.copy(modal_bank, "v1.h5")
 with h5py.File("v1.h5", "r+") as f:

@@ -1,0 +1,205 @@
+// TetGen's part of lowest_free_mode: the surface is checked here first, because TetGen given an
+// open or inconsistent surface may fill a wrong region or fail with a bare exit code.
+//
+// TetGen switches, "pq1.5/12a<v>Q":
+//   p      the input is a piecewise linear complex (the closed surface);
+//   q      quality: radius-edge ratio <= 1.5, dihedral angles >= 12 degrees (no slivers: a sliver's
+//          stiffness is near singular and spoils the factorization's accuracy);
+//   a<v>   the volume of the regular tetrahedron of the target edge, so the interior is that coarse;
+//   Q      quiet (a library prints no progress).
+// No -Y: TetGen may split surface triangles, which the quality bound needs on thin debris.
+#include <tetgen.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "kernels/fem/lowest_mode.hpp"
+
+namespace clatter::kernels::fem {
+namespace {
+
+using P3 = std::array<double, 3>;
+
+std::int64_t edge_key(int a, int b) { return static_cast<std::int64_t>(a) << 32 | static_cast<std::uint32_t>(b); }
+
+[[noreturn]] void refuse(const std::string& why) { throw std::invalid_argument("lowest_free_mode: " + why); }
+
+std::string edge_name(int a, int b) {
+  char name[32];
+  std::snprintf(name, sizeof name, "(%d, %d)", a, b);
+  return name;
+}
+
+// Every edge must bound exactly two triangles, once in each direction: closed, manifold and
+// consistently oriented (the enclosed volume's sign, and so "inside", depend on it).
+void check_surface(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+  if (triangles.size() < 4)
+    refuse("the surface has " + std::to_string(triangles.size()) + " triangles; a closed one needs 4");
+  for (const P3& v : vertices)
+    for (double c : v)
+      if (!std::isfinite(c)) refuse("a vertex coordinate is not finite");
+  const int n = static_cast<int>(vertices.size());
+  std::unordered_map<std::int64_t, int> directed;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& f = triangles[t];
+    for (int k = 0; k < 3; ++k)
+      if (f[k] < 0 || f[k] >= n)
+        refuse("triangle " + std::to_string(t) + " names vertex " + std::to_string(f[k]) + " of " + std::to_string(n));
+    if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0]) refuse("triangle " + std::to_string(t) + " repeats a vertex");
+    for (int k = 0; k < 3; ++k) ++directed[edge_key(f[k], f[(k + 1) % 3])];
+  }
+  for (const auto& f : triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[k], b = f[(k + 1) % 3];
+      const auto back = directed.find(edge_key(b, a));
+      const int forward = directed[edge_key(a, b)], backward = back == directed.end() ? 0 : back->second;
+      if (forward + backward == 1) refuse("the surface is open: edge " + edge_name(a, b) + " bounds one triangle only");
+      if (forward + backward > 2)
+        refuse("the surface is not manifold: edge " + edge_name(a, b) + " bounds " +
+               std::to_string(forward + backward) + " triangles");
+      if (forward != 1) refuse("the triangles are not consistently oriented at edge " + edge_name(a, b));
+    }
+}
+
+std::string tetgen_failure(int code) {
+  switch (code) {
+    case 1: return "TetGen ran out of memory";
+    case 3: return "the surface intersects itself";
+    case 4: return "the surface has a feature too small for TetGen's tolerance";
+    case 5: return "the surface has two facets too close together";
+    case 10: return "TetGen found an input error (duplicate or degenerate triangles?)";
+    default: return "TetGen failed (code " + std::to_string(code) + ")";
+  }
+}
+
+struct LinearMesh {
+  std::vector<P3> points;
+  std::vector<std::array<int, 4>> tets;
+};
+
+// TetGen's fill of the surface given by the used vertices only: a point on no facet would be
+// inserted as an interior vertex or dropped, depending on where it lies.
+LinearMesh run_tetgen(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles, double h_m) {
+  std::vector<int> index(vertices.size(), -1);
+  std::vector<P3> used;
+  for (const auto& f : triangles)
+    for (int v : f)
+      if (index[v] < 0) {
+        index[v] = static_cast<int>(used.size());
+        used.push_back(vertices[v]);
+      }
+  tetgenio in, out;
+  in.firstnumber = 0;
+  in.numberofpoints = static_cast<int>(used.size());
+  in.pointlist = new REAL[3 * used.size()];
+  for (std::size_t v = 0; v < used.size(); ++v)
+    for (int k = 0; k < 3; ++k) in.pointlist[3 * v + k] = used[v][k];
+  in.numberoffacets = static_cast<int>(triangles.size());
+  in.facetlist = new tetgenio::facet[triangles.size()];
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    tetgenio::facet& facet = in.facetlist[f];
+    tetgenio::init(&facet);
+    facet.numberofpolygons = 1;
+    facet.polygonlist = new tetgenio::polygon[1];
+    tetgenio::init(&facet.polygonlist[0]);
+    facet.polygonlist[0].numberofvertices = 3;
+    facet.polygonlist[0].vertexlist =
+        new int[3]{index[triangles[f][0]], index[triangles[f][1]], index[triangles[f][2]]};
+  }
+  char switches[96];
+  std::snprintf(switches, sizeof switches, "pq1.5/12a%.9gQ", h_m * h_m * h_m / (6 * std::numbers::sqrt2));
+  tetgenbehavior behavior;
+  if (!behavior.parse_commandline(switches)) refuse(std::string("TetGen refused the switches ") + switches);
+  try {
+    tetrahedralize(&behavior, &in, &out);
+  } catch (int code) {  // TETLIBRARY: terminatetetgen throws its exit code
+    refuse(tetgen_failure(code));
+  }
+  if (out.numberofcorners != 4 || out.numberoftetrahedra <= 0) refuse("TetGen returned no tetrahedra");
+  LinearMesh m;
+  m.points.resize(static_cast<std::size_t>(out.numberofpoints));
+  for (std::size_t v = 0; v < m.points.size(); ++v)
+    m.points[v] = {out.pointlist[3 * v], out.pointlist[3 * v + 1], out.pointlist[3 * v + 2]};
+  m.tets.resize(static_cast<std::size_t>(out.numberoftetrahedra));
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    for (int k = 0; k < 4; ++k) m.tets[t][k] = out.tetrahedronlist[4 * t + k];
+  return m;
+}
+
+double orientation(const LinearMesh& m, const std::array<int, 4>& t) {
+  const P3& a = m.points[t[0]];
+  std::array<P3, 3> e;  // the edges from a
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c) e[k][c] = m.points[t[k + 1]][c] - a[c];
+  return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+         e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+}
+
+// Nodes numbered in order of first use (deterministic, and no node without an element, which
+// would leave a zero row in M).
+Tet10Mesh quadratic_mesh(LinearMesh& m) {
+  std::vector<int> vertex_node(m.points.size(), -1);
+  std::vector<P3> nodes;
+  std::unordered_map<std::int64_t, int> mid;
+  auto vertex = [&](int v) {
+    if (vertex_node[v] < 0) {
+      vertex_node[v] = static_cast<int>(nodes.size());
+      nodes.push_back(m.points[v]);
+    }
+    return vertex_node[v];
+  };
+  auto mid_node = [&](int a, int b) {
+    const auto [it, inserted] =
+        mid.try_emplace(edge_key(std::min(a, b), std::max(a, b)), static_cast<int>(nodes.size()));
+    if (inserted)
+      nodes.push_back({0.5 * (nodes[a][0] + nodes[b][0]), 0.5 * (nodes[a][1] + nodes[b][1]),
+                       0.5 * (nodes[a][2] + nodes[b][2])});
+    return it->second;
+  };
+  Tet10Mesh out;
+  out.elements.reserve(m.tets.size());
+  for (auto& t : m.tets) {
+    const double o = orientation(m, t);
+    if (!(o != 0)) refuse("TetGen made a degenerate tetrahedron");
+    if (o < 0) std::swap(t[1], t[2]);
+    std::array<int, kTet10Nodes> e{};
+    for (int k = 0; k < 4; ++k) e[k] = vertex(t[k]);
+    for (int k = 0; k < 6; ++k) e[4 + k] = mid_node(e[kTet10Edges[k][0]], e[kTet10Edges[k][1]]);
+    out.elements.push_back(e);
+  }
+  out.nodes_m.resize(3, static_cast<Eigen::Index>(nodes.size()));
+  for (std::size_t v = 0; v < nodes.size(); ++v)
+    for (int k = 0; k < 3; ++k) out.nodes_m(k, static_cast<Eigen::Index>(v)) = nodes[v][k];
+  return out;
+}
+
+}  // namespace
+
+double enclosed_volume_m3(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+  double six_v = 0;
+  for (const auto& f : triangles) {
+    const P3 &a = vertices[f[0]], &b = vertices[f[1]], &c = vertices[f[2]];
+    six_v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+             a[2] * (b[0] * c[1] - b[1] * c[0]);
+  }
+  return six_v / 6;
+}
+
+Tet10Mesh tetrahedralize_surface(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                                 double edge_length_m) {
+  if (!(edge_length_m > 0) || !std::isfinite(edge_length_m))
+    refuse("the edge length must be positive (" + std::to_string(edge_length_m) + " m)");
+  check_surface(vertices, triangles);
+  if (!(enclosed_volume_m3(vertices, triangles) > 0))
+    refuse("the surface encloses no positive volume (triangles clockwise seen from outside?)");
+  LinearMesh linear = run_tetgen(vertices, triangles, edge_length_m);
+  return quadratic_mesh(linear);
+}
+
+}  // namespace clatter::kernels::fem
