@@ -52,7 +52,8 @@ LowestMode lowest_free_mode(const std::vector<std::array<double, 3>>& vertices_m
 Tet10Mesh tetrahedralize_surface(const std::vector<std::array<double, 3>>& vertices_m,
                                  const std::vector<std::array<int, 3>>& triangles, double edge_length_m);
 
-// The volume enclosed by a closed, outward-oriented triangle mesh (divergence theorem), m^3.
+// The volume enclosed by a closed, outward-oriented triangle mesh (divergence theorem), m^3;
+// std::invalid_argument as above for a surface that is not closed and consistently oriented.
 double enclosed_volume_m3(const std::vector<std::array<double, 3>>& vertices_m,
                           const std::vector<std::array<int, 3>>& triangles);
 

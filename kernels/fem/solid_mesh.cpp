@@ -182,6 +182,7 @@ Tet10Mesh quadratic_mesh(LinearMesh& m) {
 }  // namespace
 
 double enclosed_volume_m3(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+  check_surface(vertices, triangles);  // indices in range before they index (and a closed surface, or no volume)
   double six_v = 0;
   for (const auto& f : triangles) {
     const P3 &a = vertices[f[0]], &b = vertices[f[1]], &c = vertices[f[2]];
