@@ -114,9 +114,18 @@ LinearMesh run_tetgen(const std::vector<P3>& vertices, const std::vector<std::ar
   }
   char switches[96];
   std::snprintf(switches, sizeof switches, "pq1.5/12a%.9gQ", h_m * h_m * h_m / (6 * std::numbers::sqrt2));
-  tetgenbehavior behavior;
-  if (!behavior.parse_commandline(switches)) refuse(std::string("TetGen refused the switches ") + switches);
   try {
+    // A self-intersecting surface trips an assertion deep in the fill (TetGen 1.5 aborts there),
+    // so TetGen's own intersection test ("d") runs first; it reports what it finds as faces.
+    tetgenbehavior detect;
+    char detect_switches[] = "pdQ";
+    detect.parse_commandline(detect_switches);
+    tetgenio found;
+    tetrahedralize(&detect, &in, &found);
+    if (found.numberoftrifaces > 0)
+      refuse("the surface intersects itself (" + std::to_string(found.numberoftrifaces) + " faces cross another)");
+    tetgenbehavior behavior;
+    if (!behavior.parse_commandline(switches)) refuse(std::string("TetGen refused the switches ") + switches);
     tetrahedralize(&behavior, &in, &out);
   } catch (int code) {  // TETLIBRARY: terminatetetgen throws its exit code
     refuse(tetgen_failure(code));

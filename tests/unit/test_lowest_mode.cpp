@@ -184,6 +184,17 @@ TEST(LowestMode, RefusesBadInput) {
   out_of_range.triangles[3][2] = 8;
   EXPECT_THROW(lowest_free_mode(out_of_range.vertices_m, out_of_range.triangles, kGlassE_pa, kGlassNu, kGlassRho_kg_m3),
                std::invalid_argument);
+  // Two interpenetrating boxes: closed and consistently wound, each edge between two faces, but
+  // not the boundary of a solid (TetGen's own test must refuse it before its fill aborts).
+  Surface crossing = s;
+  for (const auto& v : s.vertices_m) crossing.vertices_m.push_back({v[0] + 0.1, v[1] + 0.05, v[2] + 0.025});
+  for (const auto& f : s.triangles) crossing.triangles.push_back({f[0] + 8, f[1] + 8, f[2] + 8});
+  try {
+    lowest_free_mode(crossing.vertices_m, crossing.triangles, kGlassE_pa, kGlassNu, kGlassRho_kg_m3);
+    ADD_FAILURE() << "a self-intersecting surface was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("intersects itself"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(lowest_free_mode(s.vertices_m, s.triangles, 0, kGlassNu, kGlassRho_kg_m3), std::invalid_argument);
   EXPECT_THROW(lowest_free_mode(s.vertices_m, s.triangles, -1e9, kGlassNu, kGlassRho_kg_m3), std::invalid_argument);
   EXPECT_THROW(lowest_free_mode(s.vertices_m, s.triangles, kGlassE_pa, 0.5, kGlassRho_kg_m3), std::invalid_argument);
