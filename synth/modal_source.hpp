@@ -39,11 +39,15 @@ struct ModalVoice {
   std::vector<double> omega_rad_s, damping_ratio;  // of those, scaled and in the object's material
   std::vector<const kernels::transfer::Multipole*> transfer;  // of those, the bank's (unscaled)
   std::size_t skipped_high = 0, skipped_low = 0, skipped_overdamped = 0;
+  bool band_short = false;          // the bank's last mode, scaled, is below the top frequency
 };
 
 struct ModalStats {
   std::size_t objects = 0, modes = 0, skipped_high = 0, skipped_low = 0, skipped_overdamped = 0;
   std::size_t from_scene = 0, from_mesh = 0, from_proxy = 0;  // where omega_0 came from
+  // Objects whose bank's last mode, scaled, falls below the top frequency (003 section 5.1: a bank
+  // is all-frequency only for gamma small enough): their modes between the two are missing.
+  std::size_t band_short = 0;
   std::size_t excitations = 0, silent_modes = 0;  // mode-listener pairs excited; those with zero modal force or transfer
   kernels::modal::ResonatorCounts resonators;    // summed over listeners
 };

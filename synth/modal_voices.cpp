@@ -105,6 +105,7 @@ ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& mo
   // and a renormalization to the object's mass m give sqrt(M / m) for every gamma.
   v.shape_scale = std::sqrt(bank.header.material.rho_kg_m3 * unit_volume_m3 / o.mass_kg);
   const double top_hz = std::min(options_.max_frequency_hz, 0.45 * rate_hz);
+  v.band_short = e.frequencies_hz.back() / v.gamma < top_hz;
   for (std::size_t k = 0; k < e.modes(); ++k) {
     const double f_hz = e.frequencies_hz[k] / v.gamma, omega = 2 * pi * f_hz;
     const double xi = 0.5 * (mat.rayleigh_alpha_1_s / omega + mat.rayleigh_beta_s * omega);
@@ -148,6 +149,7 @@ void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& 
     stats_.skipped_high += v.skipped_high;
     stats_.skipped_low += v.skipped_low;
     stats_.skipped_overdamped += v.skipped_overdamped;
+    if (v.band_short) ++stats_.band_short;
     (v.base_frequency_from == "scene" ? stats_.from_scene : v.base_frequency_from == "mesh" ? stats_.from_mesh : stats_.from_proxy)++;
   }
   listeners_.assign(scene.listeners_m.size(), kernels::modal::ResonatorBank(rate_hz));

@@ -48,6 +48,10 @@ void print_summary(const std::vector<synth::SoundSource*>& sources, const std::v
               "resonators, %.3g mode-samples\n",
               m.objects, m.modes, m.skipped_high, m.skipped_low, synth::ModalOptions{}.min_frequency_hz, m.skipped_overdamped, m.from_scene, m.from_mesh, m.from_proxy,
               m.excitations, m.resonators.resonators, static_cast<double>(m.resonators.mode_samples));
+  if (m.band_short)
+    std::printf("clatter-synth: modal: warning: for %zu objects the bank's last mode, scaled, lies below the top frequency: "
+                "their modes above it are missing (a bank to a higher f_max multiple has them; docs/modal.md)\n",
+                m.band_short);
 }
 
 int run(const Options& o) {
