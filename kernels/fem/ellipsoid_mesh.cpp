@@ -14,8 +14,6 @@
 // No -o2: TetGen's second-order nodes sit at straight midpoints; the curved ones are made here.
 #include "kernels/fem/ellipsoid_mesh.hpp"
 
-#include <tetgen.h>
-
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -27,6 +25,7 @@
 
 #include "kernels/fem/ellipsoid_parts.hpp"
 #include "kernels/fem/mesh_quality.hpp"
+#include "kernels/fem/tetgen_fill.hpp"
 
 namespace clatter::kernels::fem {
 namespace {
@@ -35,59 +34,23 @@ using P3 = std::array<double, 3>;
 
 constexpr int kRepairRounds = 6;
 
-// Tetrahedra as vertex quadruples over `points` (TetGen's output; the input points come first).
-struct LinearMesh {
-  std::vector<P3> points;
-  std::vector<std::array<int, 4>> tets;
-};
-
 LinearMesh run_tetgen(const SurfaceTriangulation& surface, const std::vector<P3>& inner, const EllipsoidMeshSettings& s,
                       double h) {
-  tetgenio in, out;
-  in.firstnumber = 0;
   std::vector<P3> points = surface.vertices_m;
   points.insert(points.end(), inner.begin(), inner.end());
-  in.numberofpoints = static_cast<int>(points.size());
-  in.pointlist = new REAL[3 * points.size()];
-  for (std::size_t v = 0; v < points.size(); ++v)
-    for (int k = 0; k < 3; ++k) in.pointlist[3 * v + k] = points[v][k];
-  in.numberoffacets = static_cast<int>(surface.faces.size());
-  in.facetlist = new tetgenio::facet[surface.faces.size()];
-  for (std::size_t f = 0; f < surface.faces.size(); ++f) {
-    tetgenio::facet& facet = in.facetlist[f];
-    tetgenio::init(&facet);
-    facet.numberofpolygons = 1;
-    facet.polygonlist = new tetgenio::polygon[1];
-    tetgenio::init(&facet.polygonlist[0]);
-    facet.polygonlist[0].numberofvertices = 3;
-    facet.polygonlist[0].vertexlist = new int[3]{surface.faces[f][0], surface.faces[f][1], surface.faces[f][2]};
-  }
   char switches[128];
   std::snprintf(switches, sizeof switches, "pYQq%.6g/%.6ga%.9g", s.max_radius_edge, s.min_dihedral_deg,
                 h * h * h / (6 * std::numbers::sqrt2));
-  tetgenbehavior behavior;
-  if (!behavior.parse_commandline(switches)) throw MeshError(std::string("TetGen refused the switches ") + switches);
+  TetgenFill fill;
   try {
-    tetrahedralize(&behavior, &in, &out);
-  } catch (int code) {  // TETLIBRARY: terminatetetgen throws its exit code
-    throw MeshError("TetGen failed (code " + std::to_string(code) + ") with switches " + switches);
+    fill = tetgen_fill(points, surface.faces, switches);
+  } catch (const std::invalid_argument& e) {
+    throw MeshError(e.what());
   }
-  if (out.numberofcorners != 4 || out.numberoftetrahedra <= 0) throw MeshError("TetGen returned no tetrahedra");
-  LinearMesh m;
-  m.points.resize(static_cast<std::size_t>(out.numberofpoints));
-  for (std::size_t v = 0; v < m.points.size(); ++v)
-    m.points[v] = {out.pointlist[3 * v], out.pointlist[3 * v + 1], out.pointlist[3 * v + 2]};
-  m.tets.resize(static_cast<std::size_t>(out.numberoftetrahedra));
-  for (std::size_t t = 0; t < m.tets.size(); ++t)
-    for (int k = 0; k < 4; ++k) m.tets[t][k] = out.tetrahedronlist[4 * t + k];
-  return m;
-}
-
-double orientation(const LinearMesh& m, const std::array<int, 4>& t) {
-  const P3 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]], &d = m.points[t[3]];
-  const Eigen::Vector3d u(b[0] - a[0], b[1] - a[1], b[2] - a[2]), v(c[0] - a[0], c[1] - a[1], c[2] - a[2]),
-      w(d[0] - a[0], d[1] - a[1], d[2] - a[2]);
-  return u.cross(v).dot(w);
+  if (fill.failure_code != 0)
+    throw MeshError("TetGen failed (code " + std::to_string(fill.failure_code) + ") with switches " + switches);
+  if (fill.mesh.tets.empty()) throw MeshError("TetGen returned no tetrahedra");
+  return std::move(fill.mesh);
 }
 
 long long edge_key(int a, int b) { return static_cast<long long>(std::min(a, b)) << 32 | std::max(a, b); }

@@ -8,8 +8,6 @@
 //   a<v>   the volume of the regular tetrahedron of the target edge, so the interior is that coarse;
 //   Q      quiet (a library prints no progress).
 // No -Y: TetGen may split surface triangles, which the quality bound needs on thin debris.
-#include <tetgen.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -20,6 +18,7 @@
 #include <unordered_map>
 
 #include "kernels/fem/lowest_mode.hpp"
+#include "kernels/fem/tetgen_fill.hpp"
 
 namespace clatter::kernels::fem {
 namespace {
@@ -78,11 +77,6 @@ std::string tetgen_failure(int code) {
   }
 }
 
-struct LinearMesh {
-  std::vector<P3> points;
-  std::vector<std::array<int, 4>> tets;
-};
-
 // TetGen's fill of the surface given by the used vertices only: a point on no facet would be
 // inserted as an interior vertex or dropped, depending on where it lies.
 LinearMesh run_tetgen(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles, double h_m) {
@@ -94,64 +88,21 @@ LinearMesh run_tetgen(const std::vector<P3>& vertices, const std::vector<std::ar
         index[v] = static_cast<int>(used.size());
         used.push_back(vertices[v]);
       }
-  tetgenio in, out;
-  in.firstnumber = 0;
-  in.numberofpoints = static_cast<int>(used.size());
-  in.pointlist = new REAL[3 * used.size()];
-  for (std::size_t v = 0; v < used.size(); ++v)
-    for (int k = 0; k < 3; ++k) in.pointlist[3 * v + k] = used[v][k];
-  in.numberoffacets = static_cast<int>(triangles.size());
-  in.facetlist = new tetgenio::facet[triangles.size()];
-  for (std::size_t f = 0; f < triangles.size(); ++f) {
-    tetgenio::facet& facet = in.facetlist[f];
-    tetgenio::init(&facet);
-    facet.numberofpolygons = 1;
-    facet.polygonlist = new tetgenio::polygon[1];
-    tetgenio::init(&facet.polygonlist[0]);
-    facet.polygonlist[0].numberofvertices = 3;
-    facet.polygonlist[0].vertexlist =
-        new int[3]{index[triangles[f][0]], index[triangles[f][1]], index[triangles[f][2]]};
-  }
+  std::vector<std::array<int, 3>> facets;
+  facets.reserve(triangles.size());
+  for (const auto& f : triangles) facets.push_back({index[f[0]], index[f[1]], index[f[2]]});
   char switches[96];
   std::snprintf(switches, sizeof switches, "pq1.5/12a%.9gQ", h_m * h_m * h_m / (6 * std::numbers::sqrt2));
-  try {
-    // A self-intersecting surface trips an assertion deep in the fill (TetGen 1.5 aborts there),
-    // so TetGen's own intersection test ("d") runs first; it reports what it finds as faces.
-    tetgenbehavior detect;
-    char detect_switches[] = "pdQ";
-    detect.parse_commandline(detect_switches);
-    tetgenio found;
-    tetrahedralize(&detect, &in, &found);
-    if (found.numberoftrifaces > 0)
-      refuse("the surface intersects itself (" + std::to_string(found.numberoftrifaces) + " faces cross another)");
-    tetgenbehavior behavior;
-    if (!behavior.parse_commandline(switches)) refuse(std::string("TetGen refused the switches ") + switches);
-    tetrahedralize(&behavior, &in, &out);
-  } catch (int code) {  // TETLIBRARY: terminatetetgen throws its exit code
-    refuse(tetgen_failure(code));
-  }
-  if (out.numberofcorners != 4 || out.numberoftetrahedra <= 0) refuse("TetGen returned no tetrahedra");
-  LinearMesh m;
-  m.points.resize(static_cast<std::size_t>(out.numberofpoints));
-  for (std::size_t v = 0; v < m.points.size(); ++v)
-    m.points[v] = {out.pointlist[3 * v], out.pointlist[3 * v + 1], out.pointlist[3 * v + 2]};
-  m.tets.resize(static_cast<std::size_t>(out.numberoftetrahedra));
-  for (std::size_t t = 0; t < m.tets.size(); ++t)
-    for (int k = 0; k < 4; ++k) m.tets[t][k] = out.tetrahedronlist[4 * t + k];
-  return m;
+  // A self-intersecting surface trips an assertion deep in the fill (TetGen 1.5 aborts there), so
+  // TetGen's own intersection test runs first.
+  TetgenFill fill = tetgen_fill(used, facets, switches, true);
+  if (fill.intersecting_faces > 0)
+    refuse("the surface intersects itself (" + std::to_string(fill.intersecting_faces) + " faces cross another)");
+  if (fill.failure_code != 0) refuse(tetgen_failure(fill.failure_code));
+  if (fill.mesh.tets.empty()) refuse("TetGen returned no tetrahedra");
+  return std::move(fill.mesh);
 }
 
-double orientation(const LinearMesh& m, const std::array<int, 4>& t) {
-  const P3& a = m.points[t[0]];
-  std::array<P3, 3> e;  // the edges from a
-  for (int k = 0; k < 3; ++k)
-    for (int c = 0; c < 3; ++c) e[k][c] = m.points[t[k + 1]][c] - a[c];
-  return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-         e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-}
-
-// Nodes numbered in order of first use (deterministic, and no node without an element, which
-// would leave a zero row in M).
 Tet10Mesh quadratic_mesh(LinearMesh& m) {
   std::vector<int> vertex_node(m.points.size(), -1);
   std::vector<P3> nodes;
