@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/solid_ellipsoid.hpp"
 #include "core/stage_log.hpp"
 #include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
@@ -33,17 +34,10 @@ io::Scene rock_pile(std::size_t n_objects, std::size_t n_events, double duration
   s.materials["granite"] = {5e10, 0.2, true, 6.0, 1e-7};  // nu of the glass-class modal bank (docs/materials.md)
   s.materials["concrete"] = {3e10, 0.2};
   s.ground_material = "concrete";
-  const double pi = 3.14159265358979323846, rho = 2700;
+  const double pi = 3.14159265358979323846;
   for (std::size_t i = 0; i < n_objects; ++i) {
-    io::SceneObject o;
-    o.id = static_cast<int>(i + 1);
     const double a = 0.02 + 0.04 * u(rng), b = a * (0.5 + 0.5 * u(rng)), c = b * (0.4 + 0.6 * u(rng));
-    o.volume_m3 = 4.0 / 3.0 * pi * a * b * c;
-    o.mass_kg = rho * o.volume_m3;
-    o.inertia_kg_m2 = {{{o.mass_kg / 5 * (b * b + c * c), 0, 0}, {0, o.mass_kg / 5 * (a * a + c * c), 0},
-                        {0, 0, o.mass_kg / 5 * (a * a + b * b)}}};
-    o.material = "granite";
-    s.objects.push_back(o);
+    s.objects.push_back(bench::solid_ellipsoid(static_cast<int>(i + 1), a, b, c, 2700, "granite"));
   }
   std::vector<double> times(n_events);
   for (double& t : times) t = duration_s * std::pow(u(rng), 1.5);  // a pile settling: dense early

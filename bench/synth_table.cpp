@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/solid_ellipsoid.hpp"
 #include "core/stage_log.hpp"
 #include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
@@ -29,18 +30,12 @@ io::Scene table_setting(std::size_t n_objects, double duration_s) {
   s.path = "generated table setting";
   s.materials["glass"] = {6.2e10, 0.2, true, 1.0, 1e-7};
   s.ground_material = "glass";
-  const double pi = 3.14159265358979323846, rho = 2600;
+  const double pi = 3.14159265358979323846;
   for (std::size_t i = 0; i < n_objects; ++i) {
-    io::SceneObject o;
-    o.id = static_cast<int>(i + 1);
     // Solid glass pieces 3 cm across ring near 40 kHz: the near-spherical proxies of the demo
     // bank need 4-30 cm pieces to ring in 2-20 kHz, as the paper's thin shards do.
     const double a = 0.04 + 0.26 * u(rng), b = a * (0.6 + 0.4 * u(rng)), c = b * (0.6 + 0.4 * u(rng));
-    o.volume_m3 = 4.0 / 3.0 * pi * a * b * c;
-    o.mass_kg = rho * o.volume_m3;
-    o.inertia_kg_m2 = {{{o.mass_kg / 5 * (b * b + c * c), 0, 0}, {0, o.mass_kg / 5 * (a * a + c * c), 0},
-                        {0, 0, o.mass_kg / 5 * (a * a + b * b)}}};
-    o.material = "glass";
+    io::SceneObject o = bench::solid_ellipsoid(static_cast<int>(i + 1), a, b, c, 2600, "glass");
     o.created_s = 0.2 * u(rng);  // the plates break in the first 0.2 s
     o.where = "object " + std::to_string(i);
     s.objects.push_back(o);

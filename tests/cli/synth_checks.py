@@ -9,6 +9,9 @@ Usage: synth_checks.py CLATTER_SYNTH BANK DEMO_SCENE SCRATCH"""
 import copy, json, math, os, shutil, subprocess, sys
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from synth_wav import wav  # noqa: E402
+
 synth, bank, demo_path, scratch = sys.argv[1:5]
 shutil.rmtree(scratch, ignore_errors=True)
 os.makedirs(scratch)
@@ -28,14 +31,6 @@ def run(scene, out, extra=()):
     json.dump(scene, open(path, "w"))
     r = subprocess.run([synth, "-i", path, "-b", bank, "-o", out + ".wav", *extra], capture_output=True, text=True)
     return r, path
-
-
-def wav(path):  # float32 WAV from libsndfile: the samples of the data chunk
-    raw = open(path, "rb").read()
-    channels = int.from_bytes(raw[22:24], "little")
-    i = raw.index(b"data")
-    n = int.from_bytes(raw[i + 4:i + 8], "little")
-    return np.frombuffer(raw[i + 8:i + 8 + n], dtype="<f4").reshape(-1, channels).astype(np.float64)
 
 
 def render(scene, name):

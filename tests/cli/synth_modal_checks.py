@@ -12,6 +12,9 @@ import json, math, os, shutil, subprocess, sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from synth_wav import wav  # noqa: E402
+
 synth, modal_bank, pan_bank, scratch = sys.argv[1:5]
 shutil.rmtree(scratch, ignore_errors=True)
 os.makedirs(scratch)
@@ -23,14 +26,6 @@ def check(ok, what):
     print(("ok:   " if ok else "FAIL: ") + what)
     if not ok:
         failures.append(what)
-
-
-def wav(path):  # float32 WAV from libsndfile: the samples of the data chunk
-    raw = open(path, "rb").read()
-    channels = int.from_bytes(raw[22:24], "little")
-    i = raw.index(b"data")
-    n = int.from_bytes(raw[i + 4:i + 8], "little")
-    return np.frombuffer(raw[i + 8:i + 8 + n], dtype="<f4").reshape(-1, channels).astype(np.float64)
 
 
 def sphere_scene(radius, directions, duration, beta_s=1e-7):
