@@ -76,7 +76,8 @@ class ModalSource : public SoundSource {
   struct EntryIndex;  // a kd-tree over one bank's normalized axes
   ModalVoice make_voice(const io::Scene& scene, const ObjectModel& model, int rate_hz);
   std::size_t bank_for(const io::Scene& scene, const io::SceneObject& object) const;
-  const std::vector<kernels::transfer::Multipole>& multipoles(std::size_t bank, std::size_t entry);
+  // An entry's multipoles and surface locator, built on its first use; the multipoles.
+  const std::vector<kernels::transfer::Multipole>& prepare_entry(std::size_t bank, std::size_t entry);
 
   ModalOptions options_;
   std::vector<model::ModalBank> banks_;

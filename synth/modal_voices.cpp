@@ -124,7 +124,7 @@ ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& mo
   return v;
 }
 
-const std::vector<kernels::transfer::Multipole>& ModalSource::multipoles(std::size_t b, std::size_t entry) {
+const std::vector<kernels::transfer::Multipole>& ModalSource::prepare_entry(std::size_t b, std::size_t entry) {
   auto& m = multipoles_[b][entry];
   const model::ModalEntry& e = banks_[b].entries[entry];
   if (m.empty())
@@ -141,7 +141,7 @@ void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& 
   for (const ObjectModel& m : models) {
     voices_.push_back(make_voice(scene, m, rate_hz));
     ModalVoice& v = voices_.back();
-    const auto& all = multipoles(v.bank, v.entry);
+    const auto& all = prepare_entry(v.bank, v.entry);
     for (const std::size_t k : v.modes) v.transfer.push_back(&all[k]);
     resonator_.emplace_back(v.modes.size() * scene.listeners_m.size(), std::numeric_limits<std::size_t>::max());
     ++stats_.objects;

@@ -32,7 +32,7 @@ struct Options {
 
 // Peak and RMS of each source over all listeners, and the modal source's counts.
 void print_summary(const std::vector<synth::SoundSource*>& sources, const std::vector<std::vector<std::vector<double>>>& stems,
-                   const synth::ModalSource* modal) {
+                   const synth::ModalSource* modal, const synth::ModalOptions& options) {
   for (std::size_t s = 0; s < sources.size(); ++s) {
     double peak = 0, energy = 0;
     std::size_t count = 0;
@@ -46,7 +46,7 @@ void print_summary(const std::vector<synth::SoundSource*>& sources, const std::v
   std::printf("clatter-synth: modal: %zu objects, %zu modes rendered (skipped: %zu above the top frequency, %zu below %g Hz, "
               "%zu overdamped); base frequency from the scene %zu, the mesh %zu, the proxy %zu; %zu excitations into %zu "
               "resonators, %.3g mode-samples\n",
-              m.objects, m.modes, m.skipped_high, m.skipped_low, synth::ModalOptions{}.min_frequency_hz, m.skipped_overdamped, m.from_scene, m.from_mesh, m.from_proxy,
+              m.objects, m.modes, m.skipped_high, m.skipped_low, options.min_frequency_hz, m.skipped_overdamped, m.from_scene, m.from_mesh, m.from_proxy,
               m.excitations, m.resonators.resonators, static_cast<double>(m.resonators.mode_samples));
   if (m.band_short)
     std::printf("clatter-synth: modal: warning: for %zu objects the bank's last mode, scaled, lies below the top frequency: "
@@ -106,7 +106,7 @@ int run(const Options& o) {
   std::printf("clatter-synth: %zu impacts (%zu of them fracture impulses) from %zu events (%zu on objects not alive then, "
               "skipped) rendered in %.3f s\n",
               stats.impacts, stats.fracture_impacts, scene.events.size(), stats.skipped_inactive, render_s);
-  print_summary(sources, stems, modal);
+  print_summary(sources, stems, modal, o.modal);
   return kExitOk;
 }
 

@@ -7,21 +7,33 @@
 
 namespace clatter::kernels::transfer {
 
+namespace {
+
+// sum_n h_n sum_m M_n^m Y_n^m in real arithmetic: std::complex products check for NaN on every
+// term (no -fcx-limited-range).
+std::complex<double> expansion_sum(const Multipole& m, const std::complex<double>* h, const std::complex<double>* y) {
+  double p_re = 0, p_im = 0;
+  for (int n = 0; n <= m.order; ++n) {
+    double s_re = 0, s_im = 0;
+    for (int i = harmonic_index(n, -n); i <= harmonic_index(n, n); ++i) {
+      const std::complex<double> c = m.coefficients[static_cast<std::size_t>(i)], v = y[i];
+      s_re += c.real() * v.real() - c.imag() * v.imag();
+      s_im += c.real() * v.imag() + c.imag() * v.real();
+    }
+    p_re += h[n].real() * s_re - h[n].imag() * s_im;
+    p_im += h[n].real() * s_im + h[n].imag() * s_re;
+  }
+  return {p_re, p_im};
+}
+
+}  // namespace
+
 std::complex<double> Multipole::pressure(const Eigen::Vector3d& x_m) const {
   const double r = x_m.norm();
   const auto h = spherical_hankel2(order, k_rad_m * r);
   std::vector<std::complex<double>> y(static_cast<std::size_t>(harmonic_count(order)));
   spherical_harmonics(order, x_m.z() / r, std::atan2(x_m.y(), x_m.x()), y.data());
-  std::complex<double> p = 0;
-  for (int n = 0; n <= order; ++n) {
-    std::complex<double> s = 0;
-    for (int m = -n; m <= n; ++m) {
-      const auto i = static_cast<std::size_t>(harmonic_index(n, m));
-      s += coefficients[i] * y[i];
-    }
-    p += h[static_cast<std::size_t>(n)] * s;
-  }
-  return p;
+  return expansion_sum(*this, h.data(), y.data());
 }
 
 void pressure_magnitudes(std::span<const Multipole* const> modes, const Eigen::Vector3d& x_m, double* out) {
@@ -33,20 +45,7 @@ void pressure_magnitudes(std::span<const Multipole* const> modes, const Eigen::V
   for (std::size_t k = 0; k < modes.size(); ++k) {
     const Multipole& m = *modes[k];
     spherical_hankel2_upward(m.order, m.k_rad_m * r, h.data());
-    // Real arithmetic: std::complex products check for NaN on every term (no -fcx-limited-range).
-    double p_re = 0, p_im = 0;
-    for (int n = 0; n <= m.order; ++n) {
-      double s_re = 0, s_im = 0;
-      for (int i = harmonic_index(n, -n); i <= harmonic_index(n, n); ++i) {
-        const std::complex<double> c = m.coefficients[static_cast<std::size_t>(i)], v = y[static_cast<std::size_t>(i)];
-        s_re += c.real() * v.real() - c.imag() * v.imag();
-        s_im += c.real() * v.imag() + c.imag() * v.real();
-      }
-      const std::complex<double> hn = h[static_cast<std::size_t>(n)];
-      p_re += hn.real() * s_re - hn.imag() * s_im;
-      p_im += hn.real() * s_im + hn.imag() * s_re;
-    }
-    out[k] = std::hypot(p_re, p_im);
+    out[k] = std::abs(expansion_sum(m, h.data(), y.data()));
   }
 }
 
