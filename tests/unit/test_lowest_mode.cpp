@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <numbers>
 #include <stdexcept>
 #include <utility>
