@@ -1,7 +1,8 @@
 # The two commands a new user runs: `make demo` and `make test`. Both install missing Debian
 # packages (cluster/install-deps.sh), configure with a CMake preset and build.
-#   make demo                 a 3-proxy PAN bank and a 3-ellipsoid modal bank on 2 ranks (out/demo/),
-#                             their summaries, and the demo scene rendered with PAN and modal sound
+#   make demo                 a 3-proxy PAN bank, a 3-ellipsoid modal bank and a 3-ground ground bank
+#                             on 2 ranks (out/demo/), their summaries, and the demo scene rendered with
+#                             PAN, modal and ground sound
 #                             (out/demo/debris.wav, its stems and spectrogram)
 #   make test                 every test (ctest), in build/$(PRESET), then `make fuzz`
 #   make fuzz                 the libFuzzer harnesses of the readers, 30 s each (preset fuzz, clang-14)
@@ -38,7 +39,9 @@ demo: build
 	mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-demo.toml -o out/demo/modal.h5 --log-view
 	$(BUILD)/bin/clatter-bank info out/demo/modal.h5
 	$(BUILD)/bin/clatter-bank probe out/demo/modal.h5 --entry 0 --point 1,2,2 | head -6
-	$(BUILD)/bin/clatter-synth -i scenes/demo.json -b out/demo/bank.h5 -m out/demo/modal.h5 -o out/demo/debris.wav --stems
+	mpiexec -n 2 $(BUILD)/bin/clatter-bank ground -c configs/ground-demo.toml -o out/demo/ground.h5 --log-view
+	$(BUILD)/bin/clatter-bank info out/demo/ground.h5
+	$(BUILD)/bin/clatter-synth -i scenes/demo.json -b out/demo/bank.h5 -m out/demo/modal.h5 -g out/demo/ground.h5 -o out/demo/debris.wav --stems
 	$(PYTHON) analysis/spectrogram.py out/demo/debris.wav
 
 test: build
@@ -62,6 +65,8 @@ bench: build
 	$(BUILD)/bin/clatter-synth-bench out/bench/pan.h5 5 | tee out/bench/synth.txt
 	test -f out/bench/modal.h5 || mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-demo.toml -o out/bench/modal.h5
 	$(BUILD)/bin/clatter-synth-bench out/bench/pan.h5 5 210741 out/bench/modal.h5 | tee out/bench/synth-modal.txt
+	test -f out/bench/ground.h5 || mpiexec -n 2 $(BUILD)/bin/clatter-bank ground -c configs/ground-demo.toml -o out/bench/ground.h5
+	$(BUILD)/bin/clatter-synth-bench out/bench/pan.h5 5 210741 out/bench/modal.h5 out/bench/ground.h5 | tee out/bench/synth-ground.txt
 	$(BUILD)/bin/clatter-synth-table-bench out/bench/modal.h5 5 | tee out/bench/synth-table.txt
 
 clean:

@@ -1,10 +1,11 @@
 // clatter-synth-bench: the paper's largest example at full size (Chadwick et al. 2012, "Rock pile
 // (large)": 1000 rocks, 210,741 impulses over 6 s, 192 s to synthesize there). A seeded generator
 // makes a scene of that size in memory; the acceleration noise is rendered at 44.1 kHz on one
-// core, REPEATS times; with a modal bank, the rocks' modes too. Prints the median wall time,
-// impacts per second, the split between the stages of an impact (docs/benchmarks.md) and the peak
-// resident memory.
-// Usage: clatter-synth-bench BANK [REPEATS=5] [EVENTS=210741] [MODAL_BANK]
+// core, REPEATS times; with a modal bank, the rocks' modes too; with a ground bank, the ground's
+// sound at every rock-ground impact (then also the ground source alone, for its cost per impact).
+// Prints the median wall time, impacts per second, the split between the stages of an impact
+// (docs/benchmarks.md) and the peak resident memory.
+// Usage: clatter-synth-bench BANK [REPEATS=5] [EVENTS=210741] [MODAL_BANK|-] [GROUND_BANK]
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -19,6 +20,7 @@
 
 #include "bench/solid_ellipsoid.hpp"
 #include "core/stage_log.hpp"
+#include "synth/ground_source.hpp"
 #include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
 
@@ -65,45 +67,100 @@ io::Scene rock_pile(std::size_t n_objects, std::size_t n_events, double duration
   return s;
 }
 
+// The ground bank's material for the pile's floor: its concrete (else its first material), whose
+// moduli the scene then takes, so the bank's series hold for it.
+void use_bank_ground(io::Scene& scene, const synth::GroundSource& ground) {
+  const auto& materials = ground.bank().materials;
+  const model::GroundMaterial* m = &materials.front();
+  for (const auto& candidate : materials)
+    if (candidate.name == "concrete") m = &candidate;
+  scene.ground_material = m->name;
+  scene.materials[m->name] = {m->youngs_pa, m->poisson};
+  scene.materials[m->name].density_kg_m3 = m->rho_kg_m3;
+}
+
+struct Timing {
+  double median_s = 0, min_s = 0, max_s = 0;
+  synth::RenderStats stats;
+};
+
+Timing time_renders(const io::Scene& scene, const std::vector<synth::SoundSource*>& sources, int repeats, const char* label) {
+  std::vector<double> walls;
+  Timing t;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto out = synth::render_scene(scene, sources, {}, &t.stats);
+    walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    std::printf("%s run %d: %.3f s (%zu impacts, %zu samples)\n", label, r + 1, walls.back(), t.stats.impacts, out[0][0].size());
+  }
+  std::sort(walls.begin(), walls.end());
+  t.median_s = walls[walls.size() / 2], t.min_s = walls.front(), t.max_s = walls.back();
+  return t;
+}
+
+// A source that adds nothing: the event loop's own time (Hertz times, frames, stages).
+class Silent : public synth::SoundSource {
+ public:
+  std::string name() const override { return "silent"; }
+  void add(const synth::Impact&, const std::vector<Vec3>&, int, std::vector<std::vector<double>>&) override {}
+};
+
+// The ground source alone over the same scene, less the loop alone: its cost per ground impact
+// and listener.
+void report_ground(const io::Scene& scene, synth::GroundSource& ground, int repeats) {
+  Silent silent;
+  const Timing loop = time_renders(scene, {&silent}, repeats, "loop alone");
+  const Timing alone = time_renders(scene, {&ground}, repeats, "ground alone");
+  const synth::GroundStats& g = ground.stats();
+  const double pairs = static_cast<double>(g.impacts * scene.listeners_m.size());
+  std::printf("  ground: %zu ground impacts on '%s' x %zu listener(s); eta raised to one sample %zu, clamped below %zu, above %zu; "
+              "elevation clamped %zu\n",
+              g.impacts, ground.medium().material->name.c_str(), scene.listeners_m.size(), g.eta_below_sample, g.eta_below_grid,
+              g.eta_above_grid, g.elevation_outside);
+  std::printf("  ground alone: median %.3f s of %d (min %.3f, max %.3f); the loop alone (no source) %.3f s: %.2f us per ground "
+              "impact and listener\n",
+              alone.median_s, repeats, alone.min_s, alone.max_s, loop.median_s,
+              1e6 * (alone.median_s - loop.median_s) / std::max(pairs, 1.0));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: clatter-synth-bench BANK [REPEATS=5] [EVENTS=210741] [MODAL_BANK]\n");
+    std::fprintf(stderr, "usage: clatter-synth-bench BANK [REPEATS=5] [EVENTS=210741] [MODAL_BANK|-] [GROUND_BANK]\n");
     return 2;
   }
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 5;
   const std::size_t events = argc > 3 ? static_cast<std::size_t>(std::atol(argv[3])) : 210741;
-  const io::Scene scene = rock_pile(1000, events, 6.0);
+  io::Scene scene = rock_pile(1000, events, 6.0);
   const auto t_load = std::chrono::steady_clock::now();
   synth::PanSource pan(argv[1]);
   std::unique_ptr<synth::ModalSource> modal;
-  if (argc > 4) modal = std::make_unique<synth::ModalSource>(std::vector<std::string>{argv[4]});
+  std::unique_ptr<synth::GroundSource> ground;
+  if (argc > 4 && std::string(argv[4]) != "-") modal = std::make_unique<synth::ModalSource>(std::vector<std::string>{argv[4]});
+  if (argc > 5) ground = std::make_unique<synth::GroundSource>(argv[5]);
   std::vector<synth::SoundSource*> sources{&pan};
   if (modal) sources.push_back(modal.get());
-  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
-  std::vector<double> walls;
-  synth::RenderStats stats;
-  for (int r = 0; r < repeats; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto out = synth::render_scene(scene, sources, {}, &stats);
-    walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    std::printf("run %d: %.3f s (%zu impacts, %zu samples)\n", r + 1, walls.back(), stats.impacts, out[0][0].size());
+  if (ground) {
+    use_bank_ground(scene, *ground);
+    sources.push_back(ground.get());
   }
-  std::vector<double> sorted = walls;
-  std::sort(sorted.begin(), sorted.end());
-  const double median = sorted[sorted.size() / 2];
+  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
+  const Timing all = time_renders(scene, sources, repeats, "all");
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  std::printf("rock pile: 1000 objects, %zu events -> %zu impacts, 6.1 s at 44.1 kHz, 1 core\n", events, stats.impacts);
-  std::printf("  bank load: %.3f s (%s%s%s)\n", load_s, argv[1], modal ? " and " : "", modal ? argv[4] : "");
+  std::printf("rock pile: 1000 objects, %zu events -> %zu impacts, 6.1 s at 44.1 kHz, 1 core\n", events, all.stats.impacts);
+  std::printf("  bank load: %.3f s (%s%s%s%s%s)\n", load_s, argv[1], modal ? " and " : "", modal ? argv[4] : "", ground ? " and " : "",
+              ground ? argv[5] : "");
   if (modal)
     std::printf("  modal: %zu modes rendered, %zu above 20 kHz skipped; %zu excitations, %.3g mode-samples\n", modal->stats().modes,
                 modal->stats().skipped_high, modal->stats().excitations, static_cast<double>(modal->stats().resonators.mode_samples));
-  std::printf("  render: median %.3f s of %d (min %.3f, max %.3f): %.3g impacts/s; %.0fx faster than the paper's 192 s\n",
-              median, repeats, sorted.front(), sorted.back(), static_cast<double>(stats.impacts) / median, 192.0 / median);
+  std::printf("  render (%s): median %.3f s of %d (min %.3f, max %.3f): %.3g impacts/s; %.0fx faster than the paper's 192 s\n",
+              ground ? (modal ? "PAN + modal + ground" : "PAN + ground") : (modal ? "PAN + modal" : "PAN"), all.median_s, repeats,
+              all.min_s, all.max_s, static_cast<double>(all.stats.impacts) / all.median_s, 192.0 / all.median_s);
   std::printf("  peak resident memory: %.1f MiB\n", static_cast<double>(usage.ru_maxrss) / 1024.0);
   std::printf("  stages, summed over the %d runs:\n", repeats);
   std::fputs(format_stage_table(merge_stage_entries({stage_log().entries()}), 1).c_str(), stdout);
+  if (ground) report_ground(scene, *ground, repeats);
   return 0;
 }

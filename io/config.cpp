@@ -15,88 +15,6 @@
 
 namespace clatter::io {
 
-namespace detail {
-
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
-std::string shown(const toml::value& v) {
-  switch (v.type()) {
-    case toml::value_t::table: return "a table";
-    case toml::value_t::array: return "an array";
-    default: {
-      std::string s = toml::format(v);
-      while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
-      return s;
-    }
-  }
-}
-
-std::string where(const std::string& source, const toml::value& v) {
-  auto line = v.location().line();
-  return line > 0 ? source + ":" + std::to_string(line) : source;
-}
-
-namespace {
-
-// The line of the first byte sequence that is not UTF-8 (overlong forms and surrogates included),
-// or 0. TOML documents must be UTF-8, and toml11 3.7 reads out of bounds reporting some of them
-// (an invalid byte in a 'literal string'; found by tests/fuzz/fuzz_config).
-std::size_t first_non_utf8_line(std::string_view text) {
-  std::size_t line = 1;
-  for (std::size_t i = 0; i < text.size();) {
-    const auto b = static_cast<unsigned char>(text[i]);
-    if (b == '\n') ++line;
-    const std::size_t n = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xe ? 3 : (b >> 3) == 0x1e ? 4 : 0;
-    if (n == 0 || i + n > text.size()) return line;
-    std::uint32_t cp = n == 1 ? b : b & (0x7f >> n);
-    for (std::size_t k = 1; k < n; ++k) {
-      const auto c = static_cast<unsigned char>(text[i + k]);
-      if ((c >> 6) != 0x2) return line;
-      cp = (cp << 6) | (c & 0x3f);
-    }
-    const std::uint32_t least[] = {0, 0, 0x80, 0x800, 0x10000};
-    if (cp < least[n] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return line;
-    i += n;
-  }
-  return 0;
-}
-
-}  // namespace
-
-toml::value parse_toml(std::string_view toml_text, const std::string& source) {
-  if (const std::size_t line = first_non_utf8_line(toml_text))
-    throw InputError(source + ":" + std::to_string(line) + ": malformed TOML: not UTF-8 text");
-  toml::value root;
-  try {
-    std::istringstream in{std::string(toml_text)};
-    root = toml::parse(in, source);
-  } catch (const toml::exception& e) {  // syntax_error, and internal_error for some malformed strings
-    // toml11's message is a multi-line picture; keep its first line and the line number.
-    std::string what = e.what();
-    std::string first = what.substr(0, what.find('\n'));
-    if (first.rfind("[error] ", 0) == 0) first = first.substr(8);
-    if (first.rfind("toml::", 0) == 0 && first.find(": ") != std::string::npos) first = first.substr(first.find(": ") + 2);
-    auto line = e.location().line();
-    throw InputError((line > 0 ? source + ":" + std::to_string(line) : source) + ": malformed TOML: " + first);
-  }
-  return root;
-}
-
-}  // namespace detail
-
 using detail::shown;
 using detail::where;
 
@@ -109,7 +27,8 @@ const char* kind_name() {
   else if constexpr (std::is_same_v<T, double>) return "a number";
   else if constexpr (std::is_same_v<T, bool>) return "a boolean (true or false)";
   else if constexpr (std::is_same_v<T, std::string>) return "a string";
-  else return "an array of numbers";
+  else if constexpr (std::is_same_v<T, RealList>) return "an array of numbers";
+  else return "an array of strings";
 }
 const char* kind_name(const Value& v) {
   return std::visit([](const auto& x) { return kind_name<std::decay_t<decltype(x)>>(); }, v);
@@ -120,7 +39,11 @@ std::string format_value(const Value& v) {
       [](const auto& x) -> std::string {
         using T = std::decay_t<decltype(x)>;
         if constexpr (std::is_same_v<T, RealList>) return "<list>";  // formatted by format_list
-        else if constexpr (std::is_same_v<T, std::string>) return toml::format(toml::value(x));
+        else if constexpr (std::is_same_v<T, StringList>) {
+          std::string out;
+          for (const auto& e : x) out += (out.empty() ? "" : ", ") + toml::format(toml::value(e));
+          return "[" + out + "]";
+        } else if constexpr (std::is_same_v<T, std::string>) return toml::format(toml::value(x));
         else if constexpr (std::is_same_v<T, bool>) return x ? "true" : "false";
         else if constexpr (std::is_same_v<T, double>) {
           std::string s = fmt::format("{}", x);  // shortest round-trip form
@@ -159,6 +82,17 @@ std::optional<RealList> to_list(const toml::value& v, int group) {
     } else if (!number(e)) {
       return std::nullopt;
     }
+  }
+  return out;
+}
+
+// A TOML array of strings; nullopt if it is not one.
+std::optional<StringList> to_strings(const toml::value& v) {
+  if (!v.is_array()) return std::nullopt;
+  StringList out;
+  for (const auto& e : v.as_array()) {
+    if (!e.is_string()) return std::nullopt;
+    out.push_back(static_cast<std::string>(e.as_string()));
   }
   return out;
 }
@@ -235,6 +169,28 @@ Value parse_set_value(const RealList&, const Key& key, std::string_view text, co
   return std::move(*list);
 }
 
+// A string list given as a TOML array (["a", "b"]) or bare (a,b: the shell needs no quotes).
+Value parse_set_value(const StringList&, const Key&, std::string_view text, const std::string& head) {
+  std::optional<StringList> names;
+  if (!text.empty() && text.front() == '[') {
+    try {
+      std::istringstream in("v = " + std::string(text));
+      names = to_strings(toml::find(toml::parse(in, "--set"), "v"));
+    } catch (const std::exception&) {
+    }
+  } else {
+    names.emplace();
+    for (std::size_t at = 0; names && at <= text.size();) {
+      const std::size_t comma = std::min(text.find(',', at), text.size());
+      names->emplace_back(trim(text.substr(at, comma - at)));
+      if (names->back().empty()) names.reset();
+      at = comma + 1;
+    }
+  }
+  if (!names) throw InputError(head + "expected names, e.g. a,b or [\"a\", \"b\"]");
+  return std::move(*names);
+}
+
 }  // namespace
 
 const Key* Schema::find(std::string_view name) const {
@@ -266,14 +222,22 @@ void Config::assign(const Key& key, Value value, const std::string& source, cons
   if (const auto* x = std::get_if<double>(&value); x && !in_range(key.range, *x))
     throw InputError(head + "must be " + range_text(key.range));
   if (const auto* list = std::get_if<RealList>(&value))
-    for (double x : *list)
-      if (!in_range(key.range, x)) throw InputError(head + "every element must be " + range_text(key.range));
+    for (std::size_t i = 0; i < list->size(); ++i)
+      if (!in_range(key.range, (*list)[i]))
+        throw InputError(head + "every element must be " + range_text(key.range) + fmt::format(", not [{}] = {}", i, (*list)[i]));
   if (const auto* str = std::get_if<std::string>(&value);
       str && !key.choices.empty() && std::find(key.choices.begin(), key.choices.end(), *str) == key.choices.end()) {
     std::string list;
     for (const auto& c : key.choices) list += (list.empty() ? "" : ", ") + c;
     throw InputError(head + "must be one of " + list);
   }
+  if (const auto* names = std::get_if<StringList>(&value); names && !key.choices.empty())
+    for (const auto& n : *names)
+      if (std::find(key.choices.begin(), key.choices.end(), n) == key.choices.end()) {
+        std::string list;
+        for (const auto& c : key.choices) list += (list.empty() ? "" : ", ") + c;
+        throw InputError(head + "'" + n + "' is not one of " + list);
+      }
   values_[key.name] = std::move(value);
 }
 
@@ -295,6 +259,13 @@ void Config::merge_toml(std::string_view toml_text, const std::string& source) {
         case toml::value_t::boolean: value = static_cast<bool>(v.as_boolean()); break;
         case toml::value_t::string: value = static_cast<std::string>(v.as_string()); break;
         case toml::value_t::array:
+          if (std::holds_alternative<StringList>(key->default_value)) {
+            if (auto names = to_strings(v)) {
+              value = std::move(*names);
+              break;
+            }
+            throw InputError(where(source, v) + ": key '" + full + "' = " + shown(v) + ": expected an array of strings");
+          }
           if (std::holds_alternative<RealList>(key->default_value)) {
             auto list = to_list(v, key->group);
             if (list) {
@@ -344,6 +315,7 @@ double Config::real(std::string_view key) const { return get<double>(key); }
 bool Config::boolean(std::string_view key) const { return get<bool>(key); }
 const std::string& Config::string(std::string_view key) const { return get<std::string>(key); }
 const RealList& Config::reals(std::string_view key) const { return get<RealList>(key); }
+const StringList& Config::strings(std::string_view key) const { return get<StringList>(key); }
 
 std::string Config::to_toml() const {
   std::string out = "# " + schema_->title + "\n";

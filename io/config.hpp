@@ -14,9 +14,11 @@
 namespace clatter::io {
 
 // A list is an array of numbers; with Key::group = g > 1 it is written as an array of g-tuples
-// ([[x, y, z], ...]) and stored flattened.
+// ([[x, y, z], ...]) and stored flattened. A StringList is an array of strings (names), each
+// checked against Key::choices when the key has them.
 using RealList = std::vector<double>;
-using Value = std::variant<std::int64_t, double, bool, std::string, RealList>;
+using StringList = std::vector<std::string>;
+using Value = std::variant<std::int64_t, double, bool, std::string, RealList, StringList>;
 
 // Inclusive or exclusive numeric bounds; the defaults allow everything finite.
 struct Range {
@@ -31,7 +33,7 @@ struct Key {
   Value default_value;    // its alternative fixes the key's type
   std::string help;       // one line; says the unit when the name does not
   Range range = {};       // numbers only
-  std::vector<std::string> choices = {};  // strings only; empty: any string
+  std::vector<std::string> choices = {};  // strings and string lists only; empty: any string
   int group = 1;                          // lists only: tuple size (3 for points)
 };
 
@@ -56,6 +58,7 @@ class Config {
   bool boolean(std::string_view key) const;
   const std::string& string(std::string_view key) const;
   const RealList& reals(std::string_view key) const;
+  const StringList& strings(std::string_view key) const;
 
   // Every key with its effective value, as TOML with one comment line of help per key. Parsing
   // it back gives the same Config: this text is what a bank stores as provenance.

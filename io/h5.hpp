@@ -127,5 +127,8 @@ bool has_attribute(const File& file, const std::string& object, const std::strin
 bool exists(const File& file, const std::string& name);
 // Creates a group (and its parents). Collective on a parallel file.
 void create_group(File& file, const std::string& name);
+// The names of a group's members (groups and datasets), in name order; InputError naming the file
+// when `group` is not a group.
+std::vector<std::string> group_members(const File& file, const std::string& group);
 
 }  // namespace clatter::io

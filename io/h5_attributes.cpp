@@ -152,6 +152,23 @@ void create_group(File& file, const std::string& name) {
   if (group.get() < 0) fail(file.path(), "cannot create group '" + name + "'");
 }
 
+std::vector<std::string> group_members(const File& file, const std::string& group) {
+  if (!exists(file, group)) throw InputError(file.path() + ": group '" + group + "' not found");
+  Handle g(H5Gopen2(file.id(), group.c_str(), H5P_DEFAULT), H5Gclose);
+  if (g.get() < 0) {
+    H5Eclear2(H5E_DEFAULT);
+    throw InputError(file.path() + ": '" + group + "' is not a group");
+  }
+  std::vector<std::string> names;
+  auto add = [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+    static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+    return 0;
+  };
+  if (H5Literate(g.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr, add, &names) < 0)
+    fail(file.path(), "cannot list group '" + group + "'");
+  return names;
+}
+
 template <Element T>
 std::vector<T> read_dataset(const File& file, const std::string& name, const std::vector<long long>& expected_dims,
                             std::string_view expected_units, Dims* found_dims) {

@@ -11,18 +11,9 @@
 namespace clatter::io {
 namespace {
 
+using detail::in_file_order;
 using detail::where;
-
-// A value as written in the file (toml11 would print 0.7 as 0.69999999999999996); tables and
-// arrays as "a table", "an array".
-std::string shown(const toml::value& v) {
-  if (v.is_table() || v.is_array()) return detail::shown(v);
-  const auto& at = v.location();
-  const std::string line = at.line_str();
-  if (at.line() > 0 && at.column() >= 1 && at.column() - 1 + at.region() <= line.size())
-    return line.substr(at.column() - 1, at.region());
-  return detail::shown(v);
-}
+using detail::written;
 
 // One numeric key: where it goes and the open or closed interval it must lie in.
 struct NumberKey {
@@ -72,19 +63,6 @@ std::string unknown_key_message(const std::string& name) {
   return msg + "; a material has " + all;
 }
 
-// A table's entries in the order they appear in the file: toml11 keeps tables unordered, and the
-// first error reported (and the built-in order) should not depend on a hash.
-template <class Table>
-std::vector<std::pair<std::string, const toml::value*>> in_file_order(const Table& table) {
-  std::vector<std::pair<std::string, const toml::value*>> entries;
-  for (const auto& [name, v] : table) entries.emplace_back(name, &v);
-  std::stable_sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
-    const auto la = a.second->location().line(), lb = b.second->location().line();
-    return la != lb ? la < lb : a.first < b.first;
-  });
-  return entries;
-}
-
 double read_number(const NumberKey& key, const toml::value& v, const std::string& head) {
   double x = 0;
   if (v.is_integer()) x = static_cast<double>(v.as_integer());
@@ -103,7 +81,7 @@ model::Material read_material(const std::string& name, const toml::value& table_
     // Not a structured binding: clang 14 (the fuzz preset) cannot capture one in the lambda below.
     const auto& key = entry.first;
     const auto& v = entry.second;
-    const std::string head = where(source, *v) + ": " + name + "." + key + " = " + shown(*v) + ": ";
+    const std::string head = where(source, *v) + ": " + name + "." + key + " = " + written(*v) + ": ";
     if (key == kSourceKey) {
       if (!v->is_string()) throw InputError(head + "expected a string");
       m.source = static_cast<std::string>(v->as_string());
@@ -129,7 +107,7 @@ std::vector<model::Material> parse_materials(std::string_view toml_text, const s
   std::vector<model::Material> out;
   for (const auto& [name, v] : in_file_order(root.as_table())) {
     if (!v->is_table())
-      throw InputError(where(source, *v) + ": " + name + " = " + shown(*v) +
+      throw InputError(where(source, *v) + ": " + name + " = " + written(*v) +
                        ": expected a [material] table (settings belong inside one)");
     out.push_back(read_material(name, *v, source));
   }

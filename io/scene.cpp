@@ -124,6 +124,10 @@ Scene read_setting(const json& root, const std::string& path) {
     if (!(mat.youngs_modulus_pa > 0)) bad(w + ".youngs_modulus_pa", fmt::format("{}: must be > 0", mat.youngs_modulus_pa));
     if (!(mat.poisson_ratio >= 0 && mat.poisson_ratio < 0.5)) bad(w + ".poisson_ratio", fmt::format("{}: must be in [0, 0.5)", mat.poisson_ratio));
     rayleigh_damping(m, w, mat);
+    if (m.contains("density_kg_m3")) {
+      mat.density_kg_m3 = number(m["density_kg_m3"], w + ".density_kg_m3");
+      if (!(mat.density_kg_m3 > 0)) bad(w + ".density_kg_m3", fmt::format("{}: must be > 0", mat.density_kg_m3));
+    }
     scene.materials[name] = mat;
   }
   const json& g = need(root, "ground_material", path);

@@ -15,6 +15,9 @@ struct SceneMaterial {
   // it is optional (both or neither), and clatter-synth refuses a modal object without it.
   bool has_damping = false;
   double rayleigh_alpha_1_s = 0, rayleigh_beta_s = 0;
+  // Optional (0: not given): only the ground sound needs the ground's density, and takes the
+  // ground bank's when the scene gives none (docs/scene-format.md).
+  double density_kg_m3 = 0;
 };
 
 struct SceneObject {

@@ -15,6 +15,7 @@
 #include "io/h5.hpp"
 #include "io/pan_bank.hpp"
 #include "jobs/command.hpp"
+#include "jobs/ground_tools.hpp"
 #include "jobs/modal_tools.hpp"
 #include "kernels/pan/field.hpp"
 #include "mpi/comm.hpp"
@@ -118,16 +119,18 @@ Command add_checksum_command(CLI::App& parent) {
 
 Command add_info_command(CLI::App& parent) {
   auto* app = parent.add_subcommand("info", "describe a bank: a PAN bank's proxies, fields, epsilon, size, provenance; "
-                                            "a modal bank's entries, modes and multiplicities");
+                                            "a modal bank's entries, modes and multiplicities; a ground bank's "
+                                            "materials and grid");
   auto path = std::make_shared<std::string>();
   auto entry = std::make_shared<std::optional<std::size_t>>();
-  app->add_option("bank", *path, "PAN or modal bank file")->required();
+  app->add_option("bank", *path, "PAN, modal or ground bank file")->required();
   app->add_option("--entry", *entry, "modal bank: list this entry's modes (index, frequency, damping, multiplet, "
                                      "multiplicity, residual) as CSV");
   return {app, [path, entry](const JobContext& context) -> int {
             return print_on_root(context, [&] {
               if (is_modal_bank(*path)) return modal_bank_info(*path, *entry);
               if (entry->has_value()) throw InputError("--entry: only for a modal bank; " + *path + " is not one");
+              if (is_ground_bank(*path)) return ground_bank_info(*path);
               return bank_info(*path);
             });
           }};

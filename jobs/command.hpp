@@ -36,13 +36,15 @@ Command add_pan_command(CLI::App& parent);       // jobs/pan_sweep.cpp
 Command add_plan_command(CLI::App& parent);      // jobs/plan.cpp
 Command add_modal_command(CLI::App& parent);     // jobs/modal_sweep.cpp
 Command add_modal_samples_command(CLI::App& parent);  // jobs/modal_samples.cpp
+Command add_ground_command(CLI::App& parent);    // jobs/ground_sweep.cpp
 Command add_merge_command(CLI::App& parent);     // jobs/merge_command.cpp
 Command add_checksum_command(CLI::App& parent);  // jobs/bank_tools.cpp
 Command add_info_command(CLI::App& parent);      // jobs/bank_tools.cpp
 Command add_probe_command(CLI::App& parent);     // jobs/bank_tools.cpp
 
 inline constexpr AddCommand kCommands[] = {add_field_command, add_solve_command,   add_pan_command,
-                                           add_modal_command, add_modal_samples_command, add_plan_command,
+                                           add_modal_command, add_modal_samples_command, add_ground_command,
+                                           add_plan_command,
                                            add_merge_command,
                                            add_checksum_command, add_info_command, add_probe_command};
 

@@ -6,6 +6,8 @@
 #include "core/errors.hpp"
 #include "core/stage_log.hpp"
 #include "jobs/command.hpp"
+#include "jobs/ground_spec.hpp"
+#include "jobs/ground_sweep.hpp"
 #include "jobs/modal_spec.hpp"
 #include "jobs/modal_sweep.hpp"
 #include "jobs/pan_spec.hpp"
@@ -22,21 +24,21 @@ namespace {
 BankSweep sweep_of_results(const std::string& results_dir) {
   const std::string stored = read_sweep_config(results_dir);
   const std::string source = (fs::path(results_dir) / "sweep.toml").string();
-  const bool modal = is_modal_config(stored);
-  io::Config config(modal ? modal_schema() : pan_schema());
+  const bool modal = is_modal_config(stored), ground = !modal && is_ground_config(stored);
+  io::Config config(modal ? modal_schema() : ground ? ground_schema() : pan_schema());
   config.merge_toml(stored, source);
-  BankSweep sweep = modal ? modal_bank_sweep(config) : pan_bank_sweep(config, 10);
+  BankSweep sweep = modal ? modal_bank_sweep(config) : ground ? ground_bank_sweep(config) : pan_bank_sweep(config, 10);
   if (sweep.config_toml != stored)
-    throw InputError(source + ": the sweep's inputs changed since it started (for a modal bank: the material's entry "
-                              "in its table); merge with the inputs it was run with, or run the sweep again");
+    throw InputError(source + ": the sweep's inputs changed since it started (for a modal or ground bank: a material's "
+                              "entry in its table); merge with the inputs it was run with, or run the sweep again");
   return sweep;
 }
 
 }  // namespace
 
 Command add_merge_command(CLI::App& parent) {
-  auto* app = parent.add_subcommand("merge", "merge a sweep's results folder into its bank (PAN or modal; after job "
-                                             "array slices)");
+  auto* app = parent.add_subcommand("merge", "merge a sweep's results folder into its bank (PAN, modal or ground; "
+                                             "after job array slices)");
   auto results = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>("bank.h5");
   auto force = std::make_shared<bool>(false);

@@ -115,6 +115,9 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
       im.direction_body = rotate_inverse(pose.orientation_wxyz, {sign * dir_world[0], sign * dir_world[1], sign * dir_world[2]});
       im.contact_body_m = side == 0 ? contact.arm_a : contact.arm_b;
       im.pose = pose;
+      im.on_ground = !b && !e.fracture;
+      im.point_world_m = e.point_m;
+      im.impulse_world_n_s = {sign * e.impulse_n_s[0], sign * e.impulse_n_s[1], sign * e.impulse_n_s[2]};
       for (std::size_t s = 0; s < sources.size(); ++s) {
         try {
           sources[s]->add(im, scene.listeners_m, options.rate_hz, out[s]);

@@ -1,6 +1,6 @@
 #pragma once
 // The rendering loop's view of the world: every event becomes one Impact per object it moves, and
-// every sound source (PAN, modal; ground later) adds what that impact radiates into its own
+// every sound source (PAN, modal, ground) adds what that impact radiates into its own
 // output buffers (one per listener). A source may keep state between impacts (the modal source's
 // ringing modes) and finish it after the last.
 #include <array>
@@ -29,6 +29,11 @@ struct Impact {
   Vec3 direction_body{};       // unit, the force on this object
   Vec3 contact_body_m{};       // contact point relative to the centre of mass
   io::Pose pose;
+  // What the ground source needs (synth/ground_source.hpp): whether the other body is the ground
+  // (b = "ground", or a James-lab C line), the contact point and this object's impulse, world frame.
+  bool on_ground = false;
+  Vec3 point_world_m{};
+  Vec3 impulse_world_n_s{};
 };
 
 class SoundSource {

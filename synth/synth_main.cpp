@@ -14,6 +14,7 @@
 #include "core/cleanup.hpp"
 #include "core/errors.hpp"
 #include "io/wav.hpp"
+#include "synth/ground_source.hpp"
 #include "synth/load_scene.hpp"
 #include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
@@ -23,12 +24,23 @@ using namespace clatter;
 namespace {
 
 struct Options {
-  std::string scene, impulses, bank, out = "out.wav", format = "float";
+  std::string scene, impulses, bank, ground_bank, out = "out.wav", format = "float";
   std::vector<std::string> modal_banks;
   synth::ModalOptions modal;
   int rate_hz = 44100;
   bool normalize = false, stems = false;
 };
+
+// The ground source's counts: impacts rendered and the clamps of eta and elevation (docs/synth.md).
+void print_ground_summary(const synth::GroundSource& ground, std::size_t listeners) {
+  const synth::GroundStats& g = ground.stats();
+  const model::GroundMaterial& m = *ground.medium().material;
+  std::printf("clatter-synth: ground: %zu impacts on '%s' rendered at %zu listener(s) (%zu pulling away from the ground, "
+              "skipped); eta raised to one sample %zu, clamped to the bank's [%.3g, %.3g] %zu below and %zu above; "
+              "elevation clamped to [%.3g, %.3g] rad %zu (counts per impact and listener)\n",
+              g.impacts, m.name.c_str(), listeners, g.skipped_upward, g.eta_below_sample, m.eta.front(), m.eta.back(),
+              g.eta_below_grid, g.eta_above_grid, m.elevation_rad.front(), m.elevation_rad.back(), g.elevation_outside);
+}
 
 // Peak and RMS of each source over all listeners, and the modal source's counts.
 void print_summary(const std::vector<synth::SoundSource*>& sources, const std::vector<std::vector<std::vector<double>>>& stems,
@@ -57,7 +69,8 @@ void print_summary(const std::vector<synth::SoundSource*>& sources, const std::v
 int run(const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   if (o.rate_hz < 8000 || o.rate_hz > 384000) throw InputError(fmt::format("--rate {}: must be in [8000, 384000] Hz", o.rate_hz));
-  if (o.bank.empty() && o.modal_banks.empty()) throw InputError("give a PAN bank (-b) or a modal bank (-m), or both");
+  if (o.bank.empty() && o.modal_banks.empty() && o.ground_bank.empty())
+    throw InputError("give a PAN bank (-b), a modal bank (-m) or a ground bank (-g), or several");
   const io::Scene scene = synth::load_scene(o.scene, o.impulses, !o.modal_banks.empty());
   std::vector<std::unique_ptr<synth::SoundSource>> owned;
   synth::ModalSource* modal = nullptr;
@@ -66,6 +79,12 @@ int run(const Options& o) {
     auto m = std::make_unique<synth::ModalSource>(o.modal_banks, o.modal);
     modal = m.get();
     owned.push_back(std::move(m));
+  }
+  synth::GroundSource* ground = nullptr;
+  if (!o.ground_bank.empty()) {
+    auto g = std::make_unique<synth::GroundSource>(o.ground_bank);
+    ground = g.get();
+    owned.push_back(std::move(g));
   }
   std::vector<synth::SoundSource*> sources;
   for (auto& s : owned) sources.push_back(s.get());
@@ -107,6 +126,7 @@ int run(const Options& o) {
               "skipped) rendered in %.3f s\n",
               stats.impacts, stats.fracture_impacts, scene.events.size(), stats.skipped_inactive, render_s);
   print_summary(sources, stems, modal, o.modal);
+  if (ground) print_ground_summary(*ground, scene.listeners_m.size());
   return kExitOk;
 }
 
@@ -124,6 +144,8 @@ int main(int argc, char** argv) {
   app.add_option("-b,--bank", o.bank, "PAN bank (clatter-bank pan): acceleration noise");
   app.add_option("-m,--modal-bank", o.modal_banks, "modal bank (clatter-bank modal), repeatable: one per nu class; each "
                                                    "object rings with the bank nearest its material's nu");
+  app.add_option("-g,--ground-bank", o.ground_bank, "ground bank (clatter-bank ground): the sound of the ground itself at "
+                                                    "object-ground impacts; its material named by the scene's ground_material");
   app.add_option("--max-mode-hz", o.modal.max_frequency_hz, "modes above this after scaling are skipped (and above 0.45 of "
                                                             "the rate)")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--nu-tolerance", o.modal.poisson_tolerance, "a modal bank serves materials whose nu is within this of its "
@@ -134,7 +156,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"float", "pcm24"}))
       ->capture_default_str();
   app.add_flag("--normalize", o.normalize, "scale the peak to 0.99 instead of writing pascals");
-  app.add_flag("--stems", o.stems, "also write one file per source type (OUT.pan.wav, OUT.modal.wav)");
+  app.add_flag("--stems", o.stems, "also write one file per source type (OUT.pan.wav, OUT.modal.wav, OUT.ground.wav)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -51,7 +51,7 @@ clatter_error_test(bad_probe_rate 0 "--rate -5;must be >= 0 Hz" ${probe_args} --
 clatter_error_test(bad_probe_point_nan 0 "--point 1,nan,0.5;coordinates must be finite" ${probe_args} --point 1,nan,0.5)
 set_tests_properties(bad_probe_rate bad_probe_point_nan PROPERTIES FIXTURES_REQUIRED pan_bank)
 clatter_synth_error_test(bad_synth_option "not expected: --frobnicate;clatter-synth --help" -i ${bad_in}/good.json -b ${good_bank} --frobnicate)
-clatter_synth_error_test(bad_synth_missing_bank "give a PAN bank (-b) or a modal bank (-m), or both" -i ${bad_in}/good.json)
+clatter_synth_error_test(bad_synth_missing_bank "give a PAN bank (-b), a modal bank (-m) or a ground bank (-g), or several" -i ${bad_in}/good.json)
 clatter_synth_error_test(bad_synth_rate "--rate 100;must be in [8000, 384000] Hz" -i ${bad_in}/good.json -b ${good_bank} --rate 100)
 clatter_synth_error_test(bad_synth_format "--format: mp3 not in {float,pcm24}" -i ${bad_in}/good.json -b ${good_bank} --format mp3)
 clatter_synth_error_test(bad_synth_pcm24_range "--format pcm24;beyond the 24-bit range;add --normalize"
@@ -78,7 +78,8 @@ foreach(case
     "no_listeners|no_listeners.json: listeners: expected at least one listener"
     "base_frequency|base_frequency.json: objects[0].base_frequency_hz: 0: must be > 0"
     "half_damping|half_damping.json: materials.rock: give both rayleigh_alpha_1_s and rayleigh_beta_s, or neither"
-    "fracture_time|fracture_time.json: events[0]: missing key 'contact_time_s'")
+    "fracture_time|fracture_time.json: events[0]: missing key 'contact_time_s'"
+    "density|density.json: materials.concrete.density_kg_m3: -5: must be > 0")
   string(REPLACE "|" ";" parts "${case}")
   list(POP_FRONT parts file)
   clatter_synth_error_test(bad_scene_${file} "${parts}" -i ${bad_in}/${file}.json -b ${good_bank})

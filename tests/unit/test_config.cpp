@@ -166,3 +166,32 @@ TEST(Config, ListsOfNumbersAndOfPoints) {
   EXPECT_EQ(back.to_toml(), c.to_toml());
   EXPECT_NE(c.to_toml().find("points_m = [[1.0, 2.0, 3.0], [0.5, -1.0, 2.0]]"), std::string::npos) << c.to_toml();
 }
+
+TEST(Config, ListsOfNames) {
+  Schema s{"names",
+           {{"a.any", clatter::io::StringList{"x", "y"}, "names"},
+            {"a.picked", clatter::io::StringList{"steel"}, "from a set", {}, {"steel", "soil", "wax"}}}};
+  Config c(s);
+  EXPECT_EQ(c.strings("a.any"), (clatter::io::StringList{"x", "y"}));
+  c.merge_toml("[a]\nany = [\"p\", \"q r\"]\npicked = [\"soil\", \"wax\"]\n", "n.toml");
+  EXPECT_EQ(c.strings("a.any"), (clatter::io::StringList{"p", "q r"}));
+  EXPECT_EQ(c.strings("a.picked"), (clatter::io::StringList{"soil", "wax"}));
+  c.set("a.picked=steel, wax");  // bare, comma-separated: no shell quoting needed
+  EXPECT_EQ(c.strings("a.picked"), (clatter::io::StringList{"steel", "wax"}));
+  c.set("a.any=[\"m\"]");
+  EXPECT_EQ(c.strings("a.any"), (clatter::io::StringList{"m"}));
+  c.set("a.any=[]");
+  EXPECT_TRUE(c.strings("a.any").empty());
+  expect_contains(error_of([&] { c.merge_toml("[a]\nany = [1, 2]\n", "n.toml"); }),
+                  {"n.toml:2", "'a.any'", "expected an array of strings"});
+  expect_contains(error_of([&] { c.merge_toml("[a]\nany = \"p\"\n", "n.toml"); }), {"expected an array of strings"});
+  expect_contains(error_of([&] { c.merge_toml("[a]\npicked = [\"lava\"]\n", "n.toml"); }),
+                  {"n.toml:2", "'lava' is not one of steel, soil, wax"});
+  expect_contains(error_of([&] { c.set("a.picked=steel,,wax"); }), {"--set 'a.picked=steel,,wax'", "expected names"});
+  expect_contains(error_of([&] { c.set("a.picked=lava"); }), {"'lava' is not one of"});
+  c.set("a.any=[\"with \\\"quote\\\"\"]");
+  Config back(s);
+  back.merge_toml(c.to_toml(), "printed");
+  EXPECT_EQ(back.to_toml(), c.to_toml());
+  EXPECT_EQ(back.strings("a.any"), (clatter::io::StringList{"with \"quote\""}));
+}
