@@ -13,6 +13,9 @@
 // R = c_0 t: nothing is emitted before the impact). Both integrals are composite Gauss-Legendre
 // with panels no longer than the field's resolution length (in R, and in arc length s psi), ending
 // exactly on those edges, so a field with a sharp front converges as fast as a smooth one.
+// Not for Lamb's field: its 1/r at the impact point becomes an inverse-square-root end in R under
+// an overhead listener, where these panels do not converge; ground_response.hpp integrates it
+// about the impact point instead (docs/ground.md).
 #include <functional>
 
 namespace clatter::kernels::ground {

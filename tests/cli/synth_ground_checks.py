@@ -7,6 +7,7 @@ made by `clatter-bank ground` (the ground_bank fixture's, tests/ground.cmake) an
   (h5py): contacts shorter than 4 samples put eta at one sample, c_s / (rate D), whatever the
   Hertz time, so every input of p_n = A (Pi(t_hat_n+1) - Pi(t_hat_n)) / dt_hat is known: the file
   reader, the bilinear interpolation between elevations and the scaling, end to end;
+- the same drops as James-lab 'C' lines give the same ground stem;
 - a pair event and a fracture event add nothing to the ground stem;
 - bad input, each exit 2 with one line and no WAV: a ground material the bank lacks, a listener on
   the ground, a Young's modulus 5 % off the bank's.
@@ -126,6 +127,24 @@ ref = expected_ground(len(grd))
 err = np.abs(grd - ref).max() / np.abs(ref).max()
 check(err < 1e-6, f"the ground stem against the formula on the bank's series: {err:.2g} of the peak {np.abs(ref).max():.4g} Pa "
       "(float32 storage)")
+
+# ---- the same drops as James-lab 'C' lines (docs/scene-format.md): C t id pA xA qA vn J n, with
+# pA in the body frame (the poses here are unrotated, so pA = point - position) and n the unit impulse.
+lines = []
+for e in drops:
+    j = math.sqrt(sum(c * c for c in e["impulse_n_s"]))
+    body = [e["point_m"][k] - e["pose_a"]["position_m"][k] for k in range(3)]
+    fields = [e["t_s"], e["a"], *body, *e["pose_a"]["position_m"], 1, 0, 0, 0, e["normal_speed_m_s"], j,
+              *[c / j for c in e["impulse_n_s"]]]
+    lines.append("C " + " ".join(f"{v:.17g}" for v in fields))
+side = copy.deepcopy(scene)
+side["events"] = []
+json.dump(side, open("james-side.json", "w"))
+open("james.txt", "w").write("\n".join(lines) + "\n")
+r = subprocess.run([synth, "-i", "james-side.json", "--impulses", "james.txt", "-g", ground_bank, "-o", "james.wav", "--stems"],
+                   capture_output=True, text=True)
+dev = np.abs(wav("james.ground.wav") - grd).max() / np.abs(grd).max() if r.returncode == 0 else float("inf")
+check(r.returncode == 0 and dev < 1e-6, f"James-lab 'C' lines give the native scene's ground stem ({dev:.2g} of the peak) {r.stderr.strip()}")
 
 # ---- a pair and a fracture event are not the ground's
 more = copy.deepcopy(scene)
