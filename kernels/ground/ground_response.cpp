@@ -81,6 +81,34 @@ double argmax(const Q& q, double lo, double hi) {
   return 0.5 * (lo + hi);
 }
 
+// The panel that touches a Rayleigh front carries its 1/sqrt singularity (mapped away, see below);
+// the panel after it sees the singularity just past its end, which Gauss-Legendre integrates well
+// only if that panel is no longer than its distance to the front. A grading edge that happens to
+// sit close to the front breaks that (the front moves with s, the grading edges do not), so such
+// edges are dropped until the touching panel is at least half as long as the next one.
+void widen_at_fronts(std::vector<double>& e, const std::vector<double>& fronts, const std::vector<double>& keep) {
+  auto kept = [&](double x) {
+    for (double k : keep)
+      if (std::abs(k - x) <= 1e-13 * (1 + x)) return true;
+    return false;
+  };
+  for (double c : fronts) {
+    for (int side = -1; side <= 1; side += 2) {
+      while (true) {
+        const auto it = std::lower_bound(e.begin(), e.end(), c - 1e-13 * (1 + c));
+        if (it == e.end() || !kept(*it)) break;
+        const std::ptrdiff_t i = it - e.begin(), n = static_cast<std::ptrdiff_t>(e.size());
+        const std::ptrdiff_t near = i + side, far = i + 2 * side;
+        if (near <= 0 || near >= n - 1 || far < 0 || far > n - 1 || kept(e[static_cast<std::size_t>(near)])) break;
+        const double touch = std::abs(e[static_cast<std::size_t>(near)] - c);
+        const double next = std::abs(e[static_cast<std::size_t>(far)] - e[static_cast<std::size_t>(near)]);
+        if (touch >= 0.5 * next) break;
+        e.erase(e.begin() + near);
+      }
+    }
+  }
+}
+
 struct Listener {
   double rho, z, mach;
 };
@@ -92,12 +120,20 @@ double ray_integral(const LambSurface& g, const Listener& l, double s, double ps
   auto q = [&](double r) { return (s - l.mach * big_r(r)) / r; };
   const double r_top = (s + l.mach) / (g.alpha() + l.mach);
   // Bracket the fronts q = alpha, 1, x_R on samples clustered towards the impact point (where the
-  // fronts sit just after the direct sound), then bisect.
+  // fronts sit just after the direct sound), then bisect. Before the direct sound q rises to one
+  // maximum and falls: with the maximum among the samples, each side is monotone and a grazing
+  // pair of crossings, however close, is bracketed.
   const double fronts[3] = {g.alpha(), 1.0, g.rayleigh_tau()};
+  const double r_star = s < l.mach ? argmax(q, 0.0, r_top) : 0.0;
+  std::vector<double> samples;
+  for (int i = 1; i <= set.ray_samples; ++i) {
+    const double u = double(i) / set.ray_samples;
+    samples.push_back(r_top * u * u * u);
+  }
+  if (r_star > 0) samples.insert(std::lower_bound(samples.begin(), samples.end(), r_star), r_star);
   std::vector<double> edges_fixed, rayleigh;
   double r_prev = 0, q_prev = s > l.mach ? INFINITY : -INFINITY;
-  for (int i = 1; i <= set.ray_samples; ++i) {
-    const double u = double(i) / set.ray_samples, r = r_top * u * u * u;
+  for (const double r : samples) {
     const double qi = q(r);
     for (int f = 0; f < 3; ++f) {
       const double v = fronts[f];
@@ -117,7 +153,7 @@ double ray_integral(const LambSurface& g, const Listener& l, double s, double ps
   std::vector<double> e = graded_edges(0, r_top, foot, set.finest_panel * height, set.longest_panel, set.grading, edges_fixed);
   if (s < l.mach) {
     // A ray that nearly grazes a front has a sharp peak at q's maximum: grade towards it.
-    const double r_star = argmax(q, 0.0, r_top), q_star = q(r_star);
+    const double q_star = q(r_star);
     bool grazing = false;
     for (double v : fronts) grazing = grazing || std::abs(q_star - v) < 0.2 * v;
     if (grazing) e = merged(e, graded_edges(0, r_top, r_star, 1e-6 * r_top, set.longest_panel, 2.0, {}));
@@ -127,6 +163,7 @@ double ray_integral(const LambSurface& g, const Listener& l, double s, double ps
       if (std::abs(r - x) <= 1e-13 * (1 + x)) return true;
     return false;
   };
+  widen_at_fronts(e, rayleigh, edges_fixed);
   auto f = [&](double r) { return g.step(q(r)) / big_r(r); };
   double sum = 0;
   for (std::size_t p = 0; p + 1 < e.size(); ++p) {
