@@ -1,6 +1,6 @@
 #include "kernels/ground/ground_response.hpp"
 
-#include <gsl/gsl_integration.h>
+#include "kernels/fem/tet_quadrature.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,15 +18,8 @@ struct Rule {
 };
 
 Rule gauss_legendre01(int n) {
-  gsl_integration_glfixed_table* t = gsl_integration_glfixed_table_alloc(static_cast<std::size_t>(n));
   Rule r;
-  for (int i = 0; i < n; ++i) {
-    double xi = 0, wi = 0;
-    gsl_integration_glfixed_point(0, 1, static_cast<std::size_t>(i), &xi, &wi, t);
-    r.x.push_back(xi);
-    r.w.push_back(wi);
-  }
-  gsl_integration_glfixed_table_free(t);
+  fem::gauss_legendre_unit(n, r.x, r.w);
   return r;
 }
 

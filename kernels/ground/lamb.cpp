@@ -132,7 +132,7 @@ double LambSurface::smoothed(double tau, double eta, int k) const {
     cplx c_h;
     const cplx d0 = x0 - zeta;
     if (k == 0) c_h = -std::log(d0);
-    else c_h = (k == 1 ? 1.0 : k == 2 ? 1.0 : 2.0) / std::pow(d0, k);
+    else c_h = (k == 3 ? 2.0 : 1.0) / std::pow(d0, k);  // (k - 1)!
     // R(x) = K / V(x), V = sqrt(x^2 - y) continuous along the path, K = V(x0): its Cauchy integral
     // is K h(zeta) L(zeta), h = 1/w, w = sqrt(zeta^2 - y), L = [ln((u - v+)/(u - v-))] over the path,
     // u = (x + V)/sqrt(y), v+- = (zeta +- w)/sqrt(y) (docs/ground.md).

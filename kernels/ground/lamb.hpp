@@ -25,6 +25,7 @@
 // derivatives are closed forms in complex logarithms and algebraic functions.
 #include <array>
 #include <complex>
+#include <numbers>
 
 namespace clatter::kernels::ground {
 
@@ -50,7 +51,7 @@ class LambSurface {
   double poisson_ratio() const { return nu_; }
   double alpha() const { return alpha_; }             // c_s / c_p: the P front, in tau
   double rayleigh_tau() const { return x_rayleigh_; }  // c_s / c_R: the Rayleigh front, in tau
-  double static_value() const { return (1 - nu_) / (2 * 3.14159265358979323846); }
+  double static_value() const { return (1 - nu_) / (2 * std::numbers::pi); }
 
   // S(tau): the dimensionless step response above.
   double step(double tau) const;

@@ -1,6 +1,6 @@
 #include "kernels/ground/rayleigh.hpp"
 
-#include <gsl/gsl_integration.h>
+#include "kernels/fem/tet_quadrature.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,19 +13,12 @@ namespace clatter::kernels::ground {
 namespace {
 
 struct Rule {
-  std::vector<double> x, w;  // on [-1, 1]
+  std::vector<double> x, w;  // on [0, 1]
 };
 
 Rule gauss_legendre(int n) {
-  gsl_integration_glfixed_table* t = gsl_integration_glfixed_table_alloc(static_cast<std::size_t>(n));
   Rule r;
-  for (int i = 0; i < n; ++i) {
-    double xi = 0, wi = 0;
-    gsl_integration_glfixed_point(-1, 1, static_cast<std::size_t>(i), &xi, &wi, t);
-    r.x.push_back(xi);
-    r.w.push_back(wi);
-  }
-  gsl_integration_glfixed_table_free(t);
+  fem::gauss_legendre_unit(n, r.x, r.w);
   return r;
 }
 
@@ -37,10 +30,10 @@ double composite(const Rule& rule, double lo, double hi, double h, F&& f) {
   const double width = (hi - lo) / panels;
   double sum = 0;
   for (int p = 0; p < panels; ++p) {
-    const double mid = lo + (p + 0.5) * width;
-    for (std::size_t i = 0; i < rule.x.size(); ++i) sum += rule.w[i] * f(mid + 0.5 * width * rule.x[i]);
+    const double start = lo + p * width;
+    for (std::size_t i = 0; i < rule.x.size(); ++i) sum += rule.w[i] * f(start + width * rule.x[i]);
   }
-  return 0.5 * width * sum;
+  return width * sum;
 }
 
 }  // namespace

@@ -8,8 +8,6 @@
 // input.
 #include <gtest/gtest.h>
 
-#include <gsl/gsl_integration.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "kernels/fem/tet_quadrature.hpp"
 #include "kernels/ground/ground_response.hpp"
 
 using namespace clatter::kernels::ground;
@@ -30,10 +29,8 @@ struct Rule {
   std::vector<double> x, w;
 };
 Rule gl01(int n) {
-  gsl_integration_glfixed_table* t = gsl_integration_glfixed_table_alloc(static_cast<std::size_t>(n));
-  Rule r{std::vector<double>(static_cast<std::size_t>(n)), std::vector<double>(static_cast<std::size_t>(n))};
-  for (std::size_t i = 0; i < r.x.size(); ++i) gsl_integration_glfixed_point(0, 1, i, &r.x[i], &r.w[i], t);
-  gsl_integration_glfixed_table_free(t);
+  Rule r;
+  clatter::kernels::fem::gauss_legendre_unit(n, r.x, r.w);
   return r;
 }
 
