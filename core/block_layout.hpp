@@ -1,9 +1,10 @@
 #pragma once
 // The storage of one block of a 3D cell grid, the one contract between the kernels that update it
 // and the halo exchanges (mpi/, tests) that fill its halo: the block's cells in a box of global
-// indices, stored with a one-cell halo on every side, z fastest. Standard library only.
+// indices, stored with a two-cell halo on every side, z fastest. Standard library only.
 #include <array>
 #include <cstddef>
+#include <utility>
 
 namespace clatter {
 
@@ -29,13 +30,15 @@ struct Box {
   }
 };
 
-// A box of storage positions (0 = the low halo layer) within a block's (n + 2)^3-shaped storage.
+// A box of storage positions (0 = the outer low halo layer) within a block's (n + 4)^3-shaped storage.
 struct StorageRegion {
   std::array<int, 3> start{}, count{};
 };
 
-// One block stored with a one-cell halo on every side, z fastest.
+// One block stored with a halo of kHalo cells on every side, z fastest. Two cells, because the
+// fourth-order scheme reads neighbours two cells away along the axes (docs/fdtd.md).
 struct BlockLayout {
+  static constexpr int kHalo = 2;
   Box owned;  // global indices this block updates
   std::array<long, 3> stride{};
 
@@ -48,29 +51,43 @@ struct BlockLayout {
   std::array<int, 3> count() const {
     return {owned.hi[0] - owned.lo[0], owned.hi[1] - owned.lo[1], owned.hi[2] - owned.lo[2]};
   }
-  // Storage shape per axis: the owned cells and the two halo layers.
+  // Storage shape per axis: the owned cells and the halo layers on both sides.
   std::array<int, 3> extent() const {
     const auto n = count();
-    return {n[0] + 2, n[1] + 2, n[2] + 2};
+    return {n[0] + 2 * kHalo, n[1] + 2 * kHalo, n[2] + 2 * kHalo};
   }
   std::size_t size() const { return static_cast<std::size_t>(stride[0] * extent()[0]); }
-  // Storage index of global cell (i, j, k); valid for the owned box grown by one cell.
+  // Storage index of global cell (i, j, k); valid for the owned box grown by kHalo cells.
   long at(int i, int j, int k) const {
-    return (i - owned.lo[0] + 1) * stride[0] + (j - owned.lo[1] + 1) * stride[1] + (k - owned.lo[2] + 1);
+    return (i - owned.lo[0] + kHalo) * stride[0] + (j - owned.lo[1] + kHalo) * stride[1] + (k - owned.lo[2] + kHalo);
   }
   long at(const std::array<int, 3>& c) const { return at(c[0], c[1], c[2]); }
 
-  // The face of the owned cells on `side` (0 low, 1 high) of `axis`: the layer a neighbour there
-  // reads (halo = false) or the halo layer it fills (halo = true). Edges and corners are left out:
-  // a 7-point stencil never reads them.
+  // The kHalo layers of owned cells on `side` (0 low, 1 high) of `axis` that a neighbour there
+  // reads (halo = false), or the halo layers it fills (halo = true). Needs count() >= kHalo.
   StorageRegion face(int axis, int side, bool halo) const {
     const auto n = count();
-    StorageRegion r{{1, 1, 1}, n};
-    r.count[axis] = 1;
+    StorageRegion r{{kHalo, kHalo, kHalo}, n};
+    r.count[axis] = kHalo;
     if (halo)
-      r.start[axis] = side == 0 ? 0 : n[axis] + 1;
+      r.start[axis] = side == 0 ? 0 : n[axis] + kHalo;
     else
-      r.start[axis] = side == 0 ? 1 : n[axis];
+      r.start[axis] = side == 0 ? kHalo : n[axis];
+    return r;
+  }
+  // The one-cell-thick edge along the third axis where the faces (axis_a, side_a) and
+  // (axis_b, side_b) meet: the cells the diagonal neighbour there reads (halo = false) or the halo
+  // cells it fills. Face-diagonal stencil points (+-1, +-1) need these; corners are never read.
+  StorageRegion edge(int axis_a, int side_a, int axis_b, int side_b, bool halo) const {
+    const auto n = count();
+    StorageRegion r{{kHalo, kHalo, kHalo}, n};
+    for (auto [axis, side] : {std::pair{axis_a, side_a}, std::pair{axis_b, side_b}}) {
+      r.count[axis] = 1;
+      if (halo)
+        r.start[axis] = side == 0 ? kHalo - 1 : n[axis] + kHalo;
+      else
+        r.start[axis] = side == 0 ? kHalo : n[axis] + kHalo - 1;
+    }
     return r;
   }
 };

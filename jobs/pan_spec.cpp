@@ -7,6 +7,7 @@
 
 #include "core/errors.hpp"
 #include "jobs/medium_keys.hpp"
+#include "kernels/fdtd/listeners.hpp"
 #include "kernels/pan/directions.hpp"
 #include "kernels/pan/fit.hpp"
 #include "kernels/pan/wavelet.hpp"
@@ -21,19 +22,17 @@ constexpr double kMaxProxies = 1e5;
 const io::Schema& pan_schema() {
   static const io::Schema schema = [] {
     io::Schema s{"clatter-bank pan: the PAN proxy bank (FDTD solves, wavelet fit, compression)", medium_and_pulse_keys()};
-    // The demo resolution resolves a 5x wider pulse; by eq. (10) the bank then stands for objects
-    // 5x smaller than A = 0.5 m at the paper's h = 1e-4 s (configs/pan-paper.toml has the paper's).
-    for (auto& k : s.keys)
-      if (k.name == "pulse.h_s") k.default_value = 5e-4;
+    // The defaults are the paper's bank (Chadwick et al. 2012, section 5), the one users should build;
+    // configs/pan-demo.toml is the small fast one.
     s.keys.insert(s.keys.end(), {
         {"proxies.a_m", 0.5, "semi-axis A of every proxy [m]", {0.0, 100.0, true}},
         {"proxies.grid_min_m", 0.025, "smallest B and C of the proxy grid [m]", {0.0, 100.0, true}},
         {"proxies.grid_step_m", 0.0475, "step of B and C in the proxy grid [m]", {0.0, 100.0, true}},
         {"proxies.list_m", io::RealList{}, "explicit (B, C) proxies [m]; when given, replaces the grid", {0.0, 100.0},
          {}, 2},
-        {"grid.dx_m", 0.04, "cell size [m]", {0.0, 10.0, true}},
+        {"grid.dx_m", 0.0065, "cell size [m]", {0.0, 10.0, true}},
         {"grid.pml_cells", std::int64_t{6}, "thickness of the perfectly matched layer [cells]", {0, 256}},
-        {"time.dt_s", 1.0 / 24000.0, "time step = PAN sample interval [s]; CFL limit dx / (c sqrt 3)", {0.0, 1.0, true}},
+        {"time.dt_s", 1.0 / 96000.0, "time step = PAN sample interval [s]; CFL limit dx / (c sqrt 3)", {0.0, 1.0, true}},
         {"time.tail_s", 0.012, "recorded time after the pulse reaches the farthest radius [s]", {0.0, 10.0, true}},
         {"solve.fields", io::RealList{1, 2, 3, 4, 5, 6}, "rigid-body fields to solve and store", {1, 6}},
         {"fit.radii_m", io::RealList{0.7, 0.85, 1.0, 1.2, 1.5},
@@ -43,6 +42,11 @@ const io::Schema& pan_schema() {
                                            "the paper's 45 and 64", {2, 64}},
         {"fit.epsilon", 0.01, "keep wavelet coefficient j iff some |p^_i^j| >= epsilon ||p^_i||_inf", {0.0, 1.0}},
         {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
+        {"solver.scheme", std::string("me4"), "update away from the body: me4 (fourth order in space and time, "
+                                              "25 points) or srl (the 7-point leapfrog, second order)",
+         {}, {"me4", "srl"}},
+        {"solver.max_dispersion_error", 0.02, "warn when the predicted dispersion error of the pulse at the farthest "
+                                              "radius exceeds this (relative L2)", {0.0, 10.0, true}},
     });
     return s;
   }();
@@ -69,6 +73,8 @@ PanParams parse_pan_params(const io::Config& config) {
   p.fit_divisions = static_cast<int>(config.integer("fit.divisions"));
   p.fit_epsilon = config.real("fit.epsilon");
   p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
+  p.solver_scheme = config.string("solver.scheme");
+  p.solver_max_dispersion_error = config.real("solver.max_dispersion_error");
   return p;
 }
 
@@ -103,13 +109,16 @@ SolveParams proxy_solve_params(const PanParams& in, const PanSpec& spec) {
   s.medium_rho_kg_m3 = in.medium_rho_kg_m3;
   s.pulse_h_s = in.pulse_h_s;
   s.grid_dx_m = in.grid_dx_m;
-  s.grid_half_width_m = r_max + 3 * in.grid_dx_m;
+  // Room for the listeners' tricubic stencils (2 cells) and, for me4, the blend into the layer.
+  s.grid_half_width_m = r_max + (3 + (in.solver_scheme == "me4" ? kernels::fdtd::kBlendCells : 0)) * in.grid_dx_m;
   s.grid_pml_cells = in.grid_pml_cells;
   s.grid_octant = true;
   s.time_dt_s = in.time_dt_s;
   s.time_duration_s = r_max / in.medium_c_m_s + in.time_tail_s;
   s.object_a_m = s.object_b_m = s.object_c_m = spec.a_m;
   s.solver_cut_cell_samples = in.solver_cut_cell_samples;
+  s.solver_scheme = in.solver_scheme;
+  s.solver_max_dispersion_error = in.solver_max_dispersion_error;
   s.solve_fields = in.solve_fields;
   s.listeners_points_m.clear();
   for (const auto& d : pan::direction_vertices(spec.divisions))

@@ -46,6 +46,8 @@ struct PanParams {
   int fit_terms = 0, fit_divisions = 0;
   double fit_epsilon = 0;
   int solver_cut_cell_samples = 0;
+  std::string solver_scheme = "me4";
+  double solver_max_dispersion_error = 0.02;
 };
 
 PanParams parse_pan_params(const io::Config& config);

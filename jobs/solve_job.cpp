@@ -132,6 +132,16 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
                mpi::size(comm), topo->dims()[0], topo->dims()[1], topo->dims()[2], steps, spec.problem.dt_s * 1e6,
                spec.problem.courant(), spec.fields.size());
 
+  const double cells_per_wavelength = spec.problem.c_m_s / (spec.band_edge_hz * grid.dx_m);
+  spdlog::info("solve: scheme {}, {:.3g} cells per shortest wavelength (psi's band edge {:.3g} kHz); predicted "
+               "dispersion error {:.2g} % over {:.3g} m to the farthest listener (bound {:.2g} %)",
+               fdtd::scheme_name(spec.problem.scheme), cells_per_wavelength, spec.band_edge_hz / 1e3,
+               100 * spec.predicted_error, spec.farthest_m, 100 * spec.max_dispersion_error);
+  if (spec.predicted_error > spec.max_dispersion_error)
+    spdlog::warn("solve: the predicted dispersion error {:.2g} % exceeds solver.max_dispersion_error = {:.2g} %: use a "
+                 "finer grid.dx_m, the me4 scheme, or a wider pulse.h_s (docs/fdtd.md, error budget)",
+                 100 * spec.predicted_error, 100 * spec.max_dispersion_error);
+
   SolveResult result;
   result.cells = cells;
   const fdtd::FlushSubnormals flush;
@@ -176,7 +186,8 @@ void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult
   io::write_attribute<std::int32_t>(file, g, "octant", p.grid.octant ? 1 : 0);
   io::write_attribute<std::int32_t>(file, g, "grid_cells", p.grid.n[0]);
   io::write_attribute<std::int32_t>(file, g, "pml_cells", p.grid.pml);
-  io::write_attribute(file, g, "interpolation", std::string_view("trilinear (second order)"));
+  io::write_attribute(file, g, "interpolation", std::string_view("tricubic Lagrange (fourth order)"));
+  io::write_attribute(file, g, "scheme", std::string_view(fdtd::scheme_name(p.scheme)));
   const hsize_t np = spec.listeners_m.size(), ns = static_cast<hsize_t>(spec.n_samples);
   std::vector<double> xyz;
   for (const auto& x : spec.listeners_m) xyz.insert(xyz.end(), x.begin(), x.end());

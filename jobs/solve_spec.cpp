@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
 #include "jobs/medium_keys.hpp"
+#include "kernels/fdtd/dispersion.hpp"
 #include "kernels/fdtd/listeners.hpp"
 
 namespace clatter::jobs {
@@ -22,7 +24,8 @@ const io::Schema& solve_schema() {
           {"object.a_m", 0.5, "semi-axis A along x [m]", {0.0, 100.0, true}},
           {"object.b_m", 0.35, "semi-axis B along y [m]", {0.0, 100.0, true}},
           {"object.c_m", 0.2, "semi-axis C along z [m]", {0.0, 100.0, true}},
-          {"grid.dx_m", 0.025, "cell size [m]", {0.0, 10.0, true}},
+          {"grid.dx_m", 0.0065, "cell size [m]; the paper's 6.5 mm keeps the me4 scheme within 2 % at 1 m for "
+                                "h = 1e-4 s (docs/fdtd.md, error budget)", {0.0, 10.0, true}},
           {"grid.half_width_m", 1.0, "half width of the domain inside the absorbing layer [m]", {0.0, 1e4, true}},
           {"grid.pml_cells", std::int64_t{6}, "thickness of the perfectly matched layer [cells]; 6 reflect <= -70 dB", {0, 256}},
           {"grid.octant", true, "solve x, y, z >= 0 only, with mirror planes (8x less work)"},
@@ -35,6 +38,11 @@ const io::Schema& solve_schema() {
            "listener positions [m], ellipsoid centred on the origin", {-1e4, 1e4}, {}, 3},
           {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
           {"solver.pml_reflection", 1e-5, "design reflection of the PML grading at normal incidence", {0.0, 1.0, true}},
+          {"solver.scheme", std::string("me4"), "update away from the body: me4 (fourth order in space and time, "
+                                                "25 points) or srl (the 7-point leapfrog, second order)",
+           {}, {"me4", "srl"}},
+          {"solver.max_dispersion_error", 0.02, "warn when the predicted dispersion error of the pulse at the farthest "
+                                                "listener exceeds this (relative L2)", {0.0, 10.0, true}},
     });
     return s;
   }();
@@ -61,6 +69,8 @@ SolveParams parse_solve_params(const io::Config& config) {
   for (std::size_t i = 0; i + 2 < pts.size(); i += 3) p.listeners_points_m.push_back({pts[i], pts[i + 1], pts[i + 2]});
   p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
   p.solver_pml_reflection = config.real("solver.pml_reflection");
+  p.solver_scheme = config.string("solver.scheme");
+  p.solver_max_dispersion_error = config.real("solver.max_dispersion_error");
   return p;
 }
 
@@ -75,10 +85,15 @@ SolveSpec make_solve_spec(const SolveParams& in) {
   p.dt_s = in.time_dt_s;
   p.cut_cell_samples = in.solver_cut_cell_samples;
   p.pml_reflection = in.solver_pml_reflection;
+  if (in.solver_scheme != "me4" && in.solver_scheme != "srl")
+    throw InputError(fmt::format("config: key 'solver.scheme' = \"{}\": must be one of me4, srl", in.solver_scheme));
+  p.scheme = in.solver_scheme == "srl" ? fdtd::Scheme::srl : fdtd::Scheme::me4;
   const double dx = in.grid_dx_m;
   const bool monopole = in.object_kind == "monopole";
   p.body = {in.object_a_m, in.object_b_m, in.object_c_m};
 
+  // Both schemes' limit (docs/fdtd.md): srl's from the checkerboard mode, me4's from
+  // 4 lambda^2 - 3 lambda^4 <= 1 at the same mode.
   const double limit = dx / (p.c_m_s * std::sqrt(3.0));
   if (p.dt_s > limit)
     throw InputError(fmt::format("config: key 'time.dt_s' = {}: violates the CFL limit dx / (c sqrt 3) = {:.6g} s "
@@ -119,6 +134,14 @@ SolveSpec make_solve_spec(const SolveParams& in) {
       throw InputError(fmt::format("config: key 'listeners.points_m' point {} = [{}, {}, {}]: {}", l + 1, x[0], x[1],
                                    x[2], *why));
   }
+  // The error budget's dispersion term at the farthest listener, over the distance from the body's
+  // bounding sphere (where the body's sound starts; the whole distance for the monopole).
+  const double body_radius = monopole ? 0.0 : std::max({p.body.a_m, p.body.b_m, p.body.c_m});
+  for (const auto& x : spec.listeners_m)
+    spec.farthest_m = std::max(spec.farthest_m, std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - body_radius);
+  spec.band_edge_hz = fdtd::pulse_band_edge_hz(p.h_s);
+  spec.predicted_error = fdtd::worst_dispersion_error(p.scheme, p.courant(), dx, p.c_m_s, p.h_s, spec.farthest_m);
+  spec.max_dispersion_error = in.solver_max_dispersion_error;
   spec.i_time_zero = static_cast<int>(std::ceil(2.0 * p.h_s / p.dt_s - 1e-9));
   spec.n_samples = spec.i_time_zero + static_cast<int>(std::ceil(in.time_duration_s / p.dt_s)) + 1;
   return spec;

@@ -33,6 +33,8 @@ struct SolveParams {
   std::vector<std::array<double, 3>> listeners_points_m;
   int solver_cut_cell_samples = 0;
   double solver_pml_reflection = 0;
+  std::string solver_scheme = "me4";
+  double solver_max_dispersion_error = 0.02;
 };
 
 SolveParams parse_solve_params(const io::Config& config);
@@ -44,6 +46,11 @@ struct SolveSpec {
   std::vector<std::array<double, 3>> listeners_m;
   int i_time_zero = 0;             // sample index of t = 0 (the centre of psi)
   int n_samples = 0;               // samples per series, t_k = (k - i_time_zero) dt
+  // The resolution, as the error budget (docs/fdtd.md) sees it.
+  double band_edge_hz = 0;         // psi's band edge (-40 dB)
+  double farthest_m = 0;           // longest listener distance from the body's bounding sphere
+  double predicted_error = 0;      // worst-direction dispersion error of psi over farthest_m
+  double max_dispersion_error = 0; // the bound above which the solve warns
 };
 
 // Throws InputError naming the key and value for any invalid combination.

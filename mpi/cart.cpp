@@ -13,10 +13,11 @@ CartTopology::CartTopology(MPI_Comm comm, std::array<int, 3> global_cells) : glo
   const int n_ranks = size(comm);
   check(MPI_Dims_create(n_ranks, 3, dims_.data()), "MPI_Dims_create");
   for (int a = 0; a < 3; ++a)
-    if (global_[a] < dims_[a])
+    if (global_[a] < 2 * dims_[a])
       throw InputError("grid of " + std::to_string(global_[0]) + "x" + std::to_string(global_[1]) + "x" +
                        std::to_string(global_[2]) + " cells cannot be split over " + std::to_string(n_ranks) +
-                       " ranks (" + std::to_string(dims_[a]) + " along axis " + std::to_string(a) + ")");
+                       " ranks (" + std::to_string(dims_[a]) + " along axis " + std::to_string(a) +
+                       "; each needs at least 2 cells)");
   const std::array<int, 3> periodic{0, 0, 0};
   MPI_Comm cart = MPI_COMM_NULL;
   check(MPI_Cart_create(comm, 3, dims_.data(), periodic.data(), /*reorder=*/0, &cart), "MPI_Cart_create");
@@ -40,6 +41,17 @@ int CartTopology::neighbor(int axis, int dir) const {
   int source = MPI_PROC_NULL, dest = MPI_PROC_NULL;
   check(MPI_Cart_shift(cart_.get(), axis, dir, &source, &dest), "MPI_Cart_shift");
   return dest;
+}
+
+int CartTopology::neighbor(const std::array<int, 3>& offset) const {
+  std::array<int, 3> c{};
+  for (int a = 0; a < 3; ++a) {
+    c[a] = coords_[a] + offset[a];
+    if (c[a] < 0 || c[a] >= dims_[a]) return MPI_PROC_NULL;
+  }
+  int r = MPI_PROC_NULL;
+  check(MPI_Cart_rank(cart_.get(), c.data(), &r), "MPI_Cart_rank");
+  return r;
 }
 
 }  // namespace clatter::mpi

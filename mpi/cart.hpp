@@ -22,7 +22,8 @@ Block block_of(int n, int parts, int index);
 // results). Dimensions come from MPI_Dims_create.
 class CartTopology {
  public:
-  // Throws InputError when an axis has fewer cells than processes along it.
+  // Throws InputError when an axis has fewer than two cells per process along it (the halo is two
+  // cells deep, core/block_layout.hpp).
   CartTopology(MPI_Comm comm, std::array<int, 3> global_cells);
 
   MPI_Comm comm() const { return cart_.get(); }
@@ -33,6 +34,9 @@ class CartTopology {
   std::array<int, 3> local_count() const;
   // Neighbour rank across the face in direction `dir` (-1 or +1) of `axis`; MPI_PROC_NULL at the boundary.
   int neighbor(int axis, int dir) const;
+  // Neighbour rank at `offset` (each -1, 0 or +1) in the process grid, e.g. across an edge;
+  // MPI_PROC_NULL past the boundary.
+  int neighbor(const std::array<int, 3>& offset) const;
 
  private:
   OwnedComm cart_;

@@ -14,15 +14,33 @@ MPI_Datatype subarray(const std::array<int, 3>& extent, const StorageRegion& reg
 
 HaloExchange::HaloExchange(const CartTopology& topo, const BlockLayout& layout) : comm_(topo.comm()) {
   const auto extent = layout.extent();
+  auto add = [&](int part, const std::array<int, 3>& offset, const StorageRegion& send, const StorageRegion& recv,
+                 int opposite) {
+    neighbor_[part] = topo.neighbor(offset);
+    opposite_[part] = opposite;
+    send_[part] = subarray(extent, send);
+    recv_[part] = subarray(extent, recv);
+    if (neighbor_[part] != MPI_PROC_NULL) bytes_ += 4LL * send.count[0] * send.count[1] * send.count[2];
+  };
   for (int a = 0; a < 3; ++a)
     for (int side = 0; side < 2; ++side) {
+      std::array<int, 3> offset{};
+      offset[a] = side == 0 ? -1 : +1;
       const int f = 2 * a + side;
-      neighbor_[f] = topo.neighbor(a, side == 0 ? -1 : +1);
-      const StorageRegion face = layout.face(a, side, false);
-      send_[f] = subarray(extent, face);
-      recv_[f] = subarray(extent, layout.face(a, side, true));
-      if (neighbor_[f] != MPI_PROC_NULL) bytes_ += 4LL * face.count[0] * face.count[1] * face.count[2];
+      add(f, offset, layout.face(a, side, false), layout.face(a, side, true), f ^ 1);
     }
+  // Edges: part 6 + 4 * (axis pair) + 2 * side_a + side_b; the neighbour sends its opposite edge.
+  const std::array<std::array<int, 2>, 3> pairs{{{0, 1}, {0, 2}, {1, 2}}};
+  for (int p = 0; p < 3; ++p)
+    for (int sa = 0; sa < 2; ++sa)
+      for (int sb = 0; sb < 2; ++sb) {
+        const auto [a, b] = pairs[static_cast<std::size_t>(p)];
+        std::array<int, 3> offset{};
+        offset[a] = sa == 0 ? -1 : +1;
+        offset[b] = sb == 0 ? -1 : +1;
+        const int part = 6 + 4 * p + 2 * sa + sb, opposite = 6 + 4 * p + 2 * (1 - sa) + (1 - sb);
+        add(part, offset, layout.edge(a, sa, b, sb, false), layout.edge(a, sa, b, sb, true), opposite);
+      }
   requests_.fill(MPI_REQUEST_NULL);
 }
 
@@ -35,9 +53,9 @@ HaloExchange::~HaloExchange() {
 }
 
 void HaloExchange::start(float* data) {
-  // Face f's layer goes to neighbour f with tag f; it arrives as the opposite face (f ^ 1) there.
-  for (int f = 0; f < 6; ++f) {
-    check(MPI_Irecv(data, 1, recv_[f], neighbor_[f], f ^ 1, comm_, &requests_[2 * f]), "MPI_Irecv");
+  // Part f's layers go to neighbour f with tag f; they arrive there as its opposite part.
+  for (int f = 0; f < kParts; ++f) {
+    check(MPI_Irecv(data, 1, recv_[f], neighbor_[f], opposite_[f], comm_, &requests_[2 * f]), "MPI_Irecv");
     check(MPI_Isend(data, 1, send_[f], neighbor_[f], f, comm_, &requests_[2 * f + 1]), "MPI_Isend");
   }
   active_ = true;
@@ -45,7 +63,7 @@ void HaloExchange::start(float* data) {
 
 void HaloExchange::finish() {
   if (!active_) return;
-  check(MPI_Waitall(12, requests_.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
+  check(MPI_Waitall(2 * kParts, requests_.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
   active_ = false;
 }
 

@@ -9,9 +9,10 @@
 
 namespace clatter::mpi {
 
-// Non-blocking exchange of the six one-cell face halos of a float block stored as `layout` says
-// (core/block_layout.hpp) with the Cartesian neighbours. Faces travel as MPI subarray datatypes
-// built from the layout's own face regions, no packing copies.
+// Non-blocking exchange of the halo of a float block stored as `layout` says
+// (core/block_layout.hpp): the six two-cell faces with the face neighbours and the twelve one-cell
+// edges with the edge (diagonal) neighbours, all posted at once. They travel as MPI subarray
+// datatypes built from the layout's own face and edge regions, no packing copies.
 class HaloExchange final : public clatter::HaloExchange {
  public:
   HaloExchange(const CartTopology& topo, const BlockLayout& layout);
@@ -26,9 +27,11 @@ class HaloExchange final : public clatter::HaloExchange {
 
  private:
   MPI_Comm comm_;
-  std::array<int, 6> neighbor_{};  // -x, +x, -y, +y, -z, +z
-  std::array<MPI_Datatype, 6> send_{}, recv_{};
-  std::array<MPI_Request, 12> requests_{};
+  static constexpr int kParts = 18;       // 6 faces, then 12 edges
+  std::array<int, kParts> neighbor_{};     // faces: -x, +x, -y, +y, -z, +z
+  std::array<int, kParts> opposite_{};     // the part index under which the neighbour sends to us
+  std::array<MPI_Datatype, kParts> send_{}, recv_{};
+  std::array<MPI_Request, 2 * kParts> requests_{};
   long long bytes_ = 0;
   bool active_ = false;
 };

@@ -8,6 +8,81 @@
 
 namespace clatter::kernels::fdtd {
 
+namespace {
+
+// One z row of the me4 bulk update. Cloned for AVX-512, AVX2 and the baseline: the loop is
+// bound by its 25 loads per cell, which wider vectors divide. Each cell's arithmetic is the same
+// in every clone (no FMA contraction, -ffp-contract=off), so the bits do not depend on the CPU.
+// Every group pairs points that a mirror across x, y or z swaps, and groups are added in a fixed
+// order, so mirrored cells round identically (octant mode is bit-exact, docs/fdtd.md).
+__attribute__((target_clones("avx512f", "avx2", "default")))
+void me4_row(const float* __restrict p, float* __restrict q, long sx, long sy, int nk, Operator::Me4 c) {
+  const float* __restrict xm = p - sx;
+  const float* __restrict xp = p + sx;
+  const float* __restrict xm2 = p - 2 * sx;
+  const float* __restrict xp2 = p + 2 * sx;
+  const float* __restrict ym = p - sy;
+  const float* __restrict yp = p + sy;
+  const float* __restrict ym2 = p - 2 * sy;
+  const float* __restrict yp2 = p + 2 * sy;
+  const float* __restrict xmym = p - sx - sy;
+  const float* __restrict xpyp = p + sx + sy;
+  const float* __restrict xpym = p + sx - sy;
+  const float* __restrict xmyp = p - sx + sy;
+#pragma omp simd
+  for (int k = 0; k < nk; ++k) {
+    const float ring1 = ((xm[k] + xp[k]) + (ym[k] + yp[k])) + (p[k - 1] + p[k + 1]);
+    const float ring2 = ((xm2[k] + xp2[k]) + (ym2[k] + yp2[k])) + (p[k - 2] + p[k + 2]);
+    const float dxy = (xmym[k] + xpyp[k]) + (xpym[k] + xmyp[k]);
+    const float dxz = (xm[k - 1] + xp[k + 1]) + (xp[k - 1] + xm[k + 1]);
+    const float dyz = (ym[k - 1] + yp[k + 1]) + (yp[k - 1] + ym[k + 1]);
+    q[k] = ((c.c0 * p[k] - q[k]) + (c.c1 * ring1 + c.c2 * ring2)) + c.c3 * ((dxy + dxz) + dyz);
+  }
+}
+
+// The blend into the layer on cells [k0, k1) of a row that me4_row has updated:
+// q += theta (srl - me4), theta = max(theta_xy, theta_z[k]); srl - me4 needs p^n alone.
+__attribute__((target_clones("avx512f", "avx2", "default")))
+void blend_row(const float* __restrict p, float* __restrict q, long sx, long sy, int k0, int k1,
+               const float* __restrict theta_z, float theta_xy, float d0, float d1, float d2, float d3) {
+  const float* __restrict xm = p - sx;
+  const float* __restrict xp = p + sx;
+  const float* __restrict xm2 = p - 2 * sx;
+  const float* __restrict xp2 = p + 2 * sx;
+  const float* __restrict ym = p - sy;
+  const float* __restrict yp = p + sy;
+  const float* __restrict ym2 = p - 2 * sy;
+  const float* __restrict yp2 = p + 2 * sy;
+  const float* __restrict xmym = p - sx - sy;
+  const float* __restrict xpyp = p + sx + sy;
+  const float* __restrict xpym = p + sx - sy;
+  const float* __restrict xmyp = p - sx + sy;
+#pragma omp simd
+  for (int k = k0; k < k1; ++k) {
+    const float ring1 = ((xm[k] + xp[k]) + (ym[k] + yp[k])) + (p[k - 1] + p[k + 1]);
+    const float ring2 = ((xm2[k] + xp2[k]) + (ym2[k] + yp2[k])) + (p[k - 2] + p[k + 2]);
+    const float dxy = (xmym[k] + xpyp[k]) + (xpym[k] + xmyp[k]);
+    const float dxz = (xm[k - 1] + xp[k + 1]) + (xp[k - 1] + xm[k + 1]);
+    const float dyz = (ym[k - 1] + yp[k + 1]) + (yp[k - 1] + ym[k + 1]);
+    const float theta = theta_xy > theta_z[k] ? theta_xy : theta_z[k];
+    q[k] += theta * (((d0 * p[k] + d1 * ring1) + d2 * ring2) + d3 * ((dxy + dxz) + dyz));
+  }
+}
+
+// One z row of the srl bulk update, cloned the same way. Neighbours are summed in mirror pairs.
+__attribute__((target_clones("avx512f", "avx2", "default")))
+void srl_row(const float* __restrict p, float* __restrict q, long sx, long sy, int nk, float c1, float l2) {
+  const float* __restrict xm = p - sx;
+  const float* __restrict xp = p + sx;
+  const float* __restrict ym = p - sy;
+  const float* __restrict yp = p + sy;
+#pragma omp simd
+  for (int k = 0; k < nk; ++k)
+    q[k] = (c1 * p[k] - q[k]) + l2 * (((xm[k] + xp[k]) + (ym[k] + yp[k])) + (p[k - 1] + p[k + 1]));
+}
+
+}  // namespace
+
 Engine::Engine(const Operator& op, HaloExchange& halo)
     : op_(op),
       halo_(halo),
@@ -33,7 +108,6 @@ void Engine::start(int field) {
 
 void Engine::step(double t_s) {
   halo_.start(now_.data());
-  fill_mirror_ghosts();
   keep_cut_cell_old();
   {
     Stage s("interior");
@@ -45,30 +119,45 @@ void Engine::step(double t_s) {
   }
   {
     Stage s("shell, PML, body");
+    fill_mirror_ghosts();
     for (const auto& b : op_.shell_boxes()) update_bulk(b);
     op_.pml().update(pml_, now_.data(), next_.data());
     const float psi = static_cast<float>(pulse(t_s, op_.problem().h_s));
     update_cut_cells(psi);
-    add_point_source(psi);
+    if (!op_.point_source().empty()) {
+      const double h = op_.problem().h_s, dt = op_.problem().dt_s;
+      const float smooth = static_cast<float>((pulse(t_s - dt, h) + 10.0 * pulse(t_s, h) + pulse(t_s + dt, h)) / 12.0);
+      add_point_source(psi, smooth);
+    }
   }
   now_.swap(next_);
 }
 
+// Ghost layers -1 and -2 across each mirror plane := parity x layers 0 and 1. Runs after the halo
+// has arrived and covers the whole storage extent of the other axes, axis after axis, so ghosts
+// across two planes (read by face-diagonal points) are mirrored twice and halo cells mirror too.
 void Engine::fill_mirror_ghosts() {
   if (!op_.problem().grid.octant) return;
   const Layout& layout = op_.layout();
   const Box& o = layout.owned;
+  const int h = Layout::kHalo;
   for (int a = 0; a < 3; ++a) {
     if (o.lo[a] != 0) continue;
     const float sign = static_cast<float>(field_parity(field_, a));
-    Box plane = o;
+    Box plane;
+    for (int b = 0; b < 3; ++b) {
+      plane.lo[b] = o.lo[b] - h;
+      plane.hi[b] = o.hi[b] + h;
+    }
+    plane.lo[a] = 0;
     plane.hi[a] = 1;
     const long s = layout.stride[a];
     for (int i = plane.lo[0]; i < plane.hi[0]; ++i)
       for (int j = plane.lo[1]; j < plane.hi[1]; ++j)
         for (int k = plane.lo[2]; k < plane.hi[2]; ++k) {
           const long here = layout.at(i, j, k);
-          now_[static_cast<std::size_t>(here - s)] = sign * now_[static_cast<std::size_t>(here)];
+          for (int g = 1; g <= h; ++g)  // ghost -g mirrors layer g - 1
+            now_[static_cast<std::size_t>(here - g * s)] = sign * now_[static_cast<std::size_t>(here + (g - 1) * s)];
         }
   }
 }
@@ -80,23 +169,54 @@ void Engine::keep_cut_cell_old() {
 
 void Engine::update_bulk(const Box& box) {
   if (box.empty()) return;
+  if (op_.problem().scheme == Scheme::me4)
+    update_bulk_me4(box);
+  else
+    update_bulk_srl(box);
+}
+
+void Engine::update_bulk_srl(const Box& box) {
   const Layout& layout = op_.layout();
-  const long sx = layout.stride[0], sy = layout.stride[1];
-  const float c1 = op_.c1(), l2 = op_.lambda2();
   const int nk = box.hi[2] - box.lo[2];
   for (int i = box.lo[0]; i < box.hi[0]; ++i)
     for (int j = box.lo[1]; j < box.hi[1]; ++j) {
       const long row = layout.at(i, j, box.lo[2]);
-      const float* __restrict p = now_.data() + row;
-      const float* __restrict xm = p - sx;
-      const float* __restrict xp = p + sx;
-      const float* __restrict ym = p - sy;
-      const float* __restrict yp = p + sy;
-      float* __restrict q = next_.data() + row;
-      // Neighbours summed in mirror-symmetric pairs, so mirrored cells round identically.
-      for (int k = 0; k < nk; ++k)
-        q[k] = (c1 * p[k] - q[k]) + l2 * (((xm[k] + xp[k]) + (ym[k] + yp[k])) + (p[k - 1] + p[k + 1]));
+      srl_row(now_.data() + row, next_.data() + row, layout.stride[0], layout.stride[1], nk, op_.c1(), op_.lambda2());
     }
+}
+
+void Engine::update_bulk_me4(const Box& box) {
+  const Layout& layout = op_.layout();
+  const long sx = layout.stride[0], sy = layout.stride[1];
+  const auto c = op_.me4();
+  const auto& blend = op_.blend();
+  const float* blend_z = blend[2].data() + box.lo[2];
+  const int nk = box.hi[2] - box.lo[2];
+  std::vector<std::pair<int, int>> z_runs;  // the runs [k0, k1) of this box within the blend
+  for (int k = 0; k < nk; ++k)
+    if (blend_z[k] > 0.0f) {
+      if (z_runs.empty() || z_runs.back().second != k) z_runs.push_back({k, k});
+      ++z_runs.back().second;
+    }
+  // srl - me4 at a cell, from p^n alone (p^{n-1} cancels): the blend's correction.
+  const float d0 = op_.c1() - c.c0, d1 = op_.lambda2() - c.c1, d2 = -c.c2, d3 = -c.c3;
+  // The stencil reads five x planes. Sweeping the rows in y tiles keeps their five-plane working
+  // set (~256 KiB) in cache, so each value of p^n comes from memory about once.
+  const long row_bytes = static_cast<long>(nk + 4) * static_cast<long>(sizeof(float));
+  const int tile = std::max(4, static_cast<int>((256L * 1024) / (5 * row_bytes)) - 4);
+  for (int j0 = box.lo[1]; j0 < box.hi[1]; j0 += tile)
+    for (int i = box.lo[0]; i < box.hi[0]; ++i)
+      for (int j = j0; j < std::min(j0 + tile, box.hi[1]); ++j) {
+        const long row = layout.at(i, j, box.lo[2]);
+        me4_row(now_.data() + row, next_.data() + row, sx, sy, nk, c);
+        const float blend_xy = std::max(blend[0][static_cast<std::size_t>(i)], blend[1][static_cast<std::size_t>(j)]);
+        if (blend_xy > 0.0f) {
+          blend_row(now_.data() + row, next_.data() + row, sx, sy, 0, nk, blend_z, blend_xy, d0, d1, d2, d3);
+        } else {
+          for (const auto& [k0, k1] : z_runs)
+            blend_row(now_.data() + row, next_.data() + row, sx, sy, k0, k1, blend_z, 0.0f, d0, d1, d2, d3);
+        }
+      }
 }
 
 void Engine::update_cut_cells(float psi) {
@@ -113,8 +233,9 @@ void Engine::update_cut_cells(float psi) {
   }
 }
 
-void Engine::add_point_source(float psi) {
-  for (const auto& [cell, share] : op_.point_source()) next_[static_cast<std::size_t>(cell)] += share * psi;
+void Engine::add_point_source(float psi, float psi_smooth) {
+  for (const auto& s : op_.point_source())
+    next_[static_cast<std::size_t>(s.index)] += s.smoothed * psi_smooth + s.now * psi;
 }
 
 }  // namespace clatter::kernels::fdtd

@@ -1,34 +1,39 @@
 #include "kernels/fdtd/listeners.hpp"
 
 #include <cmath>
+#include <string>
 
 namespace clatter::kernels::fdtd {
 
 Stencil listener_stencil(const Problem& problem, const std::array<double, 3>& x_m) {
   const Grid& g = problem.grid;
+  constexpr int np = Stencil::kPoints;
   Stencil s;
-  std::array<std::array<int, 2>, 3> cells{};  // per axis: cell index of corner b = 0, 1
-  std::array<std::array<int, 2>, 3> signs{};
+  std::array<std::array<int, np>, 3> cells{};  // per axis: cell index of point b = 0..3
+  std::array<std::array<int, np>, 3> signs{};
   for (int a = 0; a < 3; ++a) {
     const double u = std::abs(x_m[a]) / g.dx_m - 0.5;  // position in cell-centre units, from the origin
-    const double base = std::floor(u);
-    s.weight[a] = u - base;
-    for (int b = 0; b < 2; ++b) {
-      int rel = static_cast<int>(base) + b;  // cell whose centre is at (rel + 1/2) dx
-      if (x_m[a] < 0) rel = -1 - rel;        // the mirror image, for points on the negative side
+    const double base = std::floor(u), t = u - base;   // points at base - 1 .. base + 2, t in [0, 1)
+    // Cubic Lagrange weights of the nodes -1, 0, 1, 2 at t.
+    s.weight[a] = {-t * (t - 1) * (t - 2) / 6, (t + 1) * (t - 1) * (t - 2) / 2, -(t + 1) * t * (t - 2) / 2,
+                   (t + 1) * t * (t - 1) / 6};
+    for (int b = 0; b < np; ++b) {
+      int rel = static_cast<int>(base) - 1 + b;  // cell whose centre is at (rel + 1/2) dx
+      if (x_m[a] < 0) rel = -1 - rel;            // the mirror image, for points on the negative side
       int sign = 1;
       if (g.octant && rel < 0) {
         rel = -1 - rel;
         sign = problem.parity(a);
       }
-      cells[a][b] = rel + g.origin(a);
-      signs[a][b] = sign;
+      cells[a][static_cast<std::size_t>(b)] = rel + g.origin(a);
+      signs[a][static_cast<std::size_t>(b)] = sign;
     }
   }
-  for (int c = 0; c < 8; ++c) {
-    const int bx = (c >> 2) & 1, by = (c >> 1) & 1, bz = c & 1;
-    s.cell[c] = {cells[0][bx], cells[1][by], cells[2][bz]};
-    s.sign[c] = signs[0][bx] * signs[1][by] * signs[2][bz];
+  for (int c = 0; c < Stencil::kCorners; ++c) {
+    const std::size_t bx = static_cast<std::size_t>(c / (np * np)), by = static_cast<std::size_t>((c / np) % np),
+                      bz = static_cast<std::size_t>(c % np);
+    s.cell[static_cast<std::size_t>(c)] = {cells[0][bx], cells[1][by], cells[2][bz]};
+    s.sign[static_cast<std::size_t>(c)] = signs[0][bx] * signs[1][by] * signs[2][bz];
   }
   return s;
 }
@@ -43,9 +48,19 @@ std::optional<std::string> listener_problem(const Problem& problem, const std::a
   const Stencil fs = listener_stencil(full, x_m);
   const Box full_all = full.grid.all();
   const Box full_interior = full.grid.interior();
+  // me4 blends into the 7-point layer over the last Operator::kBlendCells cells before it (8).
+  Box unblended = full_interior;
+  if (problem.scheme == Scheme::me4 && g.pml > 0)
+    for (int a = 0; a < 3; ++a) {
+      unblended.lo[a] += kBlendCells;
+      unblended.hi[a] -= kBlendCells;
+    }
   for (const auto& c : fs.cell) {
     if (!full_all.contains(c)) return std::string("outside the domain");
     if (!full_interior.contains(c)) return std::string("inside the absorbing layer (PML)");
+    if (!unblended.contains(c))
+      return std::string("within ") + std::to_string(kBlendCells) +
+             " cells of the absorbing layer, where the scheme blends into it (grow grid.half_width_m)";
   }
   if (problem.field != 0) {
     const Ellipsoid& e = problem.body;
@@ -60,14 +75,24 @@ std::optional<std::string> listener_problem(const Problem& problem, const std::a
   return std::nullopt;
 }
 
-double interpolate(const Stencil& s, const std::array<float, 8>& v) {
-  auto corner = [&](int c) { return static_cast<double>(s.sign[c]) * static_cast<double>(v[c]); };
-  auto lerp = [](double a, double b, double w) { return (1.0 - w) * a + w * b; };
-  const double wx = s.weight[0], wy = s.weight[1], wz = s.weight[2];
-  const double x0 = lerp(lerp(corner(0), corner(1), wz), lerp(corner(2), corner(3), wz), wy);
-  const double x1 = lerp(lerp(corner(4), corner(5), wz), lerp(corner(6), corner(7), wz), wy);
+double interpolate(const Stencil& s, const std::array<float, Stencil::kCorners>& v) {
+  constexpr int np = Stencil::kPoints;
+  // z, then y, then x, each a fixed-order sum of four terms.
+  double x_sum = 0;
+  for (int bx = 0; bx < np; ++bx) {
+    double y_sum = 0;
+    for (int by = 0; by < np; ++by) {
+      double z_sum = 0;
+      for (int bz = 0; bz < np; ++bz) {
+        const std::size_t c = static_cast<std::size_t>((bx * np + by) * np + bz);
+        z_sum += s.weight[2][static_cast<std::size_t>(bz)] * (static_cast<double>(s.sign[c]) * static_cast<double>(v[c]));
+      }
+      y_sum += s.weight[1][static_cast<std::size_t>(by)] * z_sum;
+    }
+    x_sum += s.weight[0][static_cast<std::size_t>(bx)] * y_sum;
+  }
   // + 0.0 turns -0 into +0: a mirrored zero (-1 * 0) and a computed zero then have the same bits.
-  return lerp(x0, x1, wx) + 0.0;
+  return x_sum + 0.0;
 }
 
 }  // namespace clatter::kernels::fdtd

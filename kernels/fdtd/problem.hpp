@@ -4,6 +4,17 @@
 
 namespace clatter::kernels::fdtd {
 
+// The update of the fluid away from the body and the absorbing layer (docs/fdtd.md). Both are
+// stable for Courant numbers up to 1/sqrt(3).
+enum class Scheme {
+  // Standard rectilinear leapfrog: the 7-point Laplacian, second order in space and time.
+  srl,
+  // Modified-equation scheme, fourth order in space and time: the 13-point fourth-order Laplacian
+  // plus (c dt)^2/12 times the square of the 7-point one (25 points).
+  me4,
+};
+const char* scheme_name(Scheme s);
+
 // Everything one FDTD solve needs, in SI units. Built and validated by jobs/solve_job.cpp.
 struct Problem {
   Grid grid;
@@ -15,6 +26,7 @@ struct Problem {
   Ellipsoid body;
   int cut_cell_samples = 16;     // samples per cell edge for volume and face fractions
   double pml_reflection = 1e-5;  // design normal-incidence reflection of the PML grading
+  Scheme scheme = Scheme::me4;
 
   double courant() const { return c_m_s * dt_s / grid.dx_m; }
   // Mirror sign of this field across the plane normal to `axis`.

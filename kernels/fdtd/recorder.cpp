@@ -13,7 +13,7 @@ Recorder::Recorder(const Problem& problem, const std::vector<std::array<double, 
     : n_samples_(static_cast<std::size_t>(n_samples)) {
   for (int l = 0; l < static_cast<int>(listeners_m.size()); ++l) {
     stencils_.push_back(listener_stencil(problem, listeners_m[static_cast<std::size_t>(l)]));
-    for (int c = 0; c < 8; ++c) {
+    for (int c = 0; c < Stencil::kCorners; ++c) {
       const auto& cell = stencils_.back().cell[static_cast<std::size_t>(c)];
       if (layout.owned.contains(cell)) probes_.push_back({l, c, layout.at(cell)});
     }
@@ -47,7 +47,7 @@ std::string Recorder::pack() const {
 std::vector<float> interpolate_listeners(const std::vector<Stencil>& stencils, int n_samples,
                                          const std::vector<std::string>& packs) {
   const std::size_t ns = static_cast<std::size_t>(n_samples), record = 2 * sizeof(int) + ns * sizeof(float);
-  std::vector<std::array<std::vector<float>, 8>> corners(stencils.size());
+  std::vector<std::array<std::vector<float>, Stencil::kCorners>> corners(stencils.size());
   for (const auto& text : packs)
     for (std::size_t off = 0; off + record <= text.size(); off += record) {
       int header[2];
@@ -61,8 +61,8 @@ std::vector<float> interpolate_listeners(const std::vector<Stencil>& stencils, i
     for (const auto& c : corners[l])
       if (c.size() != ns) throw std::logic_error("interpolate_listeners: a listener corner was recorded by no block");
     for (std::size_t k = 0; k < ns; ++k) {
-      std::array<float, 8> v{};
-      for (int c = 0; c < 8; ++c) v[static_cast<std::size_t>(c)] = corners[l][static_cast<std::size_t>(c)][k];
+      std::array<float, Stencil::kCorners> v{};
+      for (int c = 0; c < Stencil::kCorners; ++c) v[static_cast<std::size_t>(c)] = corners[l][static_cast<std::size_t>(c)][k];
       series[l * ns + k] = static_cast<float>(interpolate(stencils[l], v));
     }
   }

@@ -40,11 +40,12 @@ with h5py.File("out/big.h5") as f:
 with h5py.File("out/raw.h5") as f:
     assert sorted(f["fields"]) == ["p%d" % i for i in range(1, 7)], list(f["fields"])  # 6 pulse fields
 with h5py.File("out/bank.h5") as f:
-    assert f["proxies/b_m"].shape == (66,), f["proxies/b_m"].shape  # the 66-proxy bank
-print("README outputs: formats, the 256^3 grid, 6 fields and 66 proxies as stated")
+    assert f["proxies/b_m"].shape == (3,), f["proxies/b_m"].shape  # the 3-proxy demo bank
+print("README outputs: formats, the 256^3 grid, 6 fields and 3 proxies as stated")
 PY
 grep -q "Subcommands:" cmd1.out || fail "--help printed no subcommands"
-grep -q "66 ellipsoids" cmd*.out || fail "info did not describe 66 proxies"
+grep -q "3 ellipsoids" cmd*.out || fail "info did not describe 3 proxies"
+grep -q "66 tasks\|66 proxies\|396" cmd*.out cmd*.err pan.sbatch || fail "plan did not size the default 66-proxy bank"
 grep -q "#SBATCH" pan.sbatch || fail "pan.sbatch is not a batch script"
 probe=$(grep -l '^t_s,p_Pa' cmd*.out | head -1)
 [[ -n $probe && $(wc -l <"$probe") -gt 100 ]] || fail "probe printed no CSV series"

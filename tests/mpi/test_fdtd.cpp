@@ -6,6 +6,8 @@
 #include <cstring>
 
 #include "jobs/solve_job.hpp"
+#include "kernels/fdtd/dispersion.hpp"
+#include "kernels/pulse.hpp"
 #include "mpi/comm.hpp"
 #include "tests/reference/sphere_exact.hpp"
 
@@ -36,7 +38,7 @@ io::Config sphere_config(double cells_per_radius, const std::string& fields) {
   c.set("object.b_m=0.1");
   c.set("object.c_m=0.1");
   c.set("grid.dx_m=" + exact(dx));
-  c.set("grid.half_width_m=0.33");
+  c.set("grid.half_width_m=" + exact(0.33 + 8 * dx));  // listeners clear of the 8-cell blend into the PML
   c.set("time.dt_s=" + exact(0.5 * dx / 343.2));
   c.set("time.duration_s=0.0022");
   c.set("solve.fields=" + fields);
@@ -117,7 +119,7 @@ io::Config ellipsoid_config(bool octant) {
   c.set("object.b_m=0.07");
   c.set("object.c_m=0.05");
   c.set("grid.dx_m=0.01");
-  c.set("grid.half_width_m=0.2");
+  c.set("grid.half_width_m=0.28");  // listeners clear of the 8-cell blend into the PML
   c.set("grid.pml_cells=6");
   c.set(std::string("grid.octant=") + (octant ? "true" : "false"));
   c.set("time.dt_s=" + exact(0.5 * 0.01 / 343.2));
@@ -185,7 +187,7 @@ TEST(FdtdRanks, OneTwoAndAllRanksGiveIdenticalBits) {
   }
 }
 
-TEST(FdtdPml, MonopoleReflectionBelowMinus40dB) {
+TEST(FdtdPml, MonopoleReflectionBelowMinus60dB) {
   // The same monopole in a small domain and in one large enough that its boundary is not heard
   // within the window: their difference at a listener is what the small domain's PML reflected.
   auto config = [](double half_width) {
@@ -194,12 +196,13 @@ TEST(FdtdPml, MonopoleReflectionBelowMinus40dB) {
     c.set("grid.dx_m=0.01");
     c.set("grid.half_width_m=" + exact(half_width));
     c.set("time.dt_s=" + exact(0.5 * 0.01 / 343.2));
-    c.set("time.duration_s=0.0024");
+    c.set("time.duration_s=0.003");
     // On an axis, and towards an edge and a corner of the box (oblique incidence).
     c.set("listeners.points_m=[[0.17, 0.02, 0.02], [0.15, 0.14, 0.02], [0.14, 0.14, 0.14]]");
     return c;
   };
-  auto small_cfg = config(0.2), large_cfg = config(0.65);
+  // 0.28 m: the listeners stay out of the 8-cell blend into the layer (docs/fdtd.md).
+  auto small_cfg = config(0.28), large_cfg = config(0.75);
   jobs::SolveSpec spec;
   auto small = solve(small_cfg, &spec);
   auto large = solve(large_cfg);
@@ -213,19 +216,20 @@ TEST(FdtdPml, MonopoleReflectionBelowMinus40dB) {
     }
     const double db = 20 * std::log10(reflected / direct);
     std::printf("listener %zu: PML reflection %.1f dB (default 6 cells)\n", l, db);
-    EXPECT_LT(db, -40.0) << "listener " << l;
+    EXPECT_LT(db, -60.0) << "listener " << l;
   }
 }
 
-TEST(FdtdHealth, BlowUpBeyondTheCflLimitIsATaskFailureOnEveryRank) {
-  // The config refuses dt above the CFL limit dx / (c sqrt 3); past the checks, 1.2x that limit
-  // makes the scheme's highest mode grow by a fixed factor per step, so the listeners overflow to
-  // Inf/NaN within a few hundred steps. Every rank must raise the same TaskFailure (sweeps record it
-  // and go on); a rank that ran on would hang its partner in the next halo exchange.
+TEST(FdtdHealth, BlowUpJustBeyondTheCflLimitIsATaskFailureOnEveryRank) {
+  // The config refuses dt above the CFL limit dx / (c sqrt 3); past the checks, 1.02x that limit
+  // makes the me4 scheme's checkerboard mode grow by exp(2 asinh(sqrt(s - 1))) ~ 1.38 per step
+  // (s = 4 l^2 - 3 l^4 = 1.026), so the listeners overflow to Inf/NaN within a few hundred steps.
+  // Every rank must raise the same TaskFailure (sweeps record it and go on); a rank that ran on
+  // would hang its partner in the next halo exchange.
   auto config = sphere_config(5, "[1]");
   config.set("time.duration_s=0.02");
   auto spec = jobs::make_solve_spec(config);
-  spec.problem.dt_s = 1.2 * spec.problem.grid.dx_m / (spec.problem.c_m_s * std::sqrt(3.0));
+  spec.problem.dt_s = 1.02 * spec.problem.grid.dx_m / (spec.problem.c_m_s * std::sqrt(3.0));
   spec.n_samples = 4000;
   try {
     jobs::run_solve(MPI_COMM_WORLD, spec, 0.0);
@@ -233,5 +237,158 @@ TEST(FdtdHealth, BlowUpBeyondTheCflLimitIsATaskFailureOnEveryRank) {
   } catch (const TaskFailure& e) {
     EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
     if (mpi::rank(MPI_COMM_WORLD) == 0) std::printf("%s\n", e.what());
+  }
+}
+
+namespace {
+
+// Relative L2 error of the free-field monopole's recorded series against rho psi(t - r/c)/(4 pi r).
+std::vector<double> monopole_errors(const jobs::SolveSpec& spec, const std::vector<float>& series) {
+  const auto& p = spec.problem;
+  const std::size_t ns = static_cast<std::size_t>(spec.n_samples);
+  std::vector<double> out;
+  for (std::size_t l = 0; l < spec.listeners_m.size(); ++l) {
+    const auto& x = spec.listeners_m[l];
+    const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    double num = 0, den = 0;
+    for (std::size_t k = 0; k < ns; ++k) {
+      const double t = (static_cast<double>(k) - spec.i_time_zero) * p.dt_s;
+      const double want = kernels::monopole_pressure(r, t, p.h_s, p.c_m_s, p.rho_kg_m3), got = series[l * ns + k];
+      num += (got - want) * (got - want);
+      den += want * want;
+    }
+    out.push_back(std::sqrt(num / den));
+  }
+  return out;
+}
+
+// The paper's resolution (6.5 mm, dt = 1/96000 s, h = 1e-4 s): a monopole in octant mode heard at
+// distance r along a grid axis, a face diagonal and the body diagonal.
+io::Config monopole_at(double r, double dx, const std::string& scheme) {
+  io::Config c(jobs::solve_schema());
+  c.set("object.kind=monopole");
+  c.set("grid.dx_m=" + exact(dx));
+  c.set("grid.half_width_m=" + exact(r + 12 * dx));  // beyond the listeners' stencils and the 8-cell blend
+  c.set("time.dt_s=" + exact(dx / 0.0065 / 96000.0));
+  c.set("time.duration_s=" + exact(r / 343.2 + 4e-4));
+  c.set("solver.scheme=" + scheme);
+  const double f = r / std::sqrt(2.0), d = r / std::sqrt(3.0);
+  c.set("listeners.points_m=[[" + exact(r) + ", 0, 0], [" + exact(f) + ", " + exact(f) + ", 0], [" + exact(d) + ", " +
+        exact(d) + ", " + exact(d) + "]]");
+  return c;
+}
+
+const char* kDirections[3] = {"axis", "face diagonal", "body diagonal"};
+
+}  // namespace
+
+TEST(FdtdAccuracy, MonopoleAtOneMetreWithin2PercentInEveryDirectionAtThePapersResolution) {
+  // The case: at 6.5 mm the 7-point leapfrog is 25 % off along an axis at 1 m; me4 must
+  // hold 2 % along the axis, the face diagonal and the body diagonal (docs/fdtd.md, error budget).
+  std::vector<double> errors[2];
+  const char* schemes[2] = {"me4", "srl"};
+  for (int s = 0; s < 2; ++s) {
+    auto config = monopole_at(1.0, 0.0065, schemes[s]);
+    jobs::SolveSpec spec;
+    auto result = solve(config, &spec);
+    if (root()) errors[s] = monopole_errors(spec, result.series[0]);
+  }
+  if (!root()) return;
+  for (std::size_t l = 0; l < 3; ++l) {
+    std::printf("monopole at 1 m, %s: me4 %.4f, srl %.4f (relative L2)\n", kDirections[l], errors[0][l], errors[1][l]);
+    EXPECT_LT(errors[0][l], 0.02) << kDirections[l];
+  }
+}
+
+TEST(FdtdAccuracy, MonopoleConvergesAtFourthOrderAsTheBudgetPredicts) {
+  // me4's dispersion error ~ dx^4 at a fixed Courant number (0.55): along the axis, where that
+  // term dominates, 9.75 mm against 6.5 mm at 0.5 m must shrink by about 1.5^4 = 5.1. Along the
+  // diagonals the error is small and not yet asymptotic; there the measured error must follow the
+  // error budget's dispersion prediction (kernels/fdtd/dispersion.hpp) plus 0.3 % for the source
+  // and interpolation terms, which the prediction leaves out, scaled as dx^3 (1 % at 9.75 mm).
+  std::vector<double> coarse, fine;
+  jobs::SolveSpec c_spec, f_spec;
+  auto c_cfg = monopole_at(0.5, 0.00975, "me4"), f_cfg = monopole_at(0.5, 0.0065, "me4");
+  auto c_res = solve(c_cfg, &c_spec);
+  if (root()) coarse = monopole_errors(c_spec, c_res.series[0]);
+  auto f_res = solve(f_cfg, &f_spec);
+  if (!root()) return;
+  fine = monopole_errors(f_spec, f_res.series[0]);
+  const double dirs[3][3] = {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}};
+  for (std::size_t l = 0; l < 3; ++l) {
+    const double order = std::log(coarse[l] / fine[l]) / std::log(1.5);
+    double predicted[2];
+    const jobs::SolveSpec* specs[2] = {&c_spec, &f_spec};
+    for (int s = 0; s < 2; ++s) {
+      const auto& p = specs[s]->problem;
+      predicted[s] = kernels::fdtd::dispersion_error(p.scheme, p.courant(), p.grid.dx_m, p.c_m_s, p.h_s, 0.5, dirs[l]);
+    }
+    std::printf("monopole at 0.5 m, %s: %.5f at 9.75 mm, %.5f at 6.5 mm (order %.2f); budget's dispersion term "
+                "%.5f, %.5f\n", kDirections[l], coarse[l], fine[l], order, predicted[0], predicted[1]);
+    if (l == 0) {
+      EXPECT_GT(order, 3.3);
+    }
+    for (int s = 0; s < 2; ++s) {
+      const double measured = s == 0 ? coarse[l] : fine[l];
+      EXPECT_GT(measured, 0.8 * predicted[s]) << kDirections[l];
+      const double other_terms = 0.003 * std::pow(specs[s]->problem.grid.dx_m / 0.0065, 3);
+      EXPECT_LT(measured, 1.25 * predicted[s] + other_terms) << kDirections[l];
+    }
+  }
+}
+
+TEST(FdtdAccuracy, TranslatingSphereAtOneMetreWithin2PercentOnAndOffTheAxis) {
+  // The sphere: a = 0.25 m translating along z, listeners at 1 m on the motion axis and
+  // 37 degrees off it, 6.5 mm cells, dt = 1/96000 s, against the exact solution.
+  io::Config c(jobs::solve_schema());
+  for (const char* k : {"object.a_m=0.25", "object.b_m=0.25", "object.c_m=0.25"}) c.set(k);
+  c.set("grid.dx_m=0.0065");
+  c.set("grid.half_width_m=1.1");
+  c.set("time.duration_s=0.0045");
+  c.set("solve.fields=[3]");
+  const double s37 = std::sin(37.0 * M_PI / 180), c37 = std::cos(37.0 * M_PI / 180);
+  c.set("listeners.points_m=[[0, 0, 1], [" + exact(s37) + ", 0, " + exact(c37) + "]]");
+  jobs::SolveSpec spec;
+  auto result = solve(c, &spec);
+  if (!root()) return;
+  const reference::TranslatingSphere sphere{0.25, spec.problem.c_m_s, spec.problem.rho_kg_m3, spec.problem.h_s};
+  const std::size_t ns = static_cast<std::size_t>(spec.n_samples);
+  for (std::size_t l = 0; l < 2; ++l) {
+    const auto& x = spec.listeners_m[l];
+    double num = 0, den = 0;
+    for (std::size_t k = 0; k < ns; ++k) {
+      const double t = (static_cast<double>(k) - spec.i_time_zero) * spec.problem.dt_s;
+      const double want = sphere.pressure(1.0, x[2], t), got = result.series[0][l * ns + k];
+      num += (got - want) * (got - want);
+      den += want * want;
+    }
+    const double e = std::sqrt(num / den);
+    std::printf("translating sphere at 1 m, %s: relative L2 %.4f\n", l == 0 ? "on the axis" : "37 degrees off", e);
+    EXPECT_LT(e, 0.02) << "listener " << l;
+  }
+}
+
+TEST(FdtdHealth, StableAtTheCflLimitWithBodyBandAndLayer) {
+  // dt exactly dx / (c sqrt 3): the bulk scheme's highest mode is marginal there. With the cut
+  // cells, the 7-point band and the PML in the same operator, 6000 steps must stay bounded: the
+  // pulse has left long before, so the listeners' late values must be far below their peak.
+  auto config = sphere_config(5, "[1, 4]");
+  config.set("time.dt_s=" + exact(0.02 / 343.2 / std::sqrt(3.0)));
+  config.set("time.duration_s=" + exact(6000 * 0.02 / 343.2 / std::sqrt(3.0)));
+  jobs::SolveSpec spec;
+  auto result = solve(config, &spec);
+  if (!root()) return;
+  const std::size_t ns = static_cast<std::size_t>(spec.n_samples);
+  for (std::size_t f = 0; f < result.series.size(); ++f) {
+    double peak = 0, late = 0;
+    for (std::size_t l = 0; l < spec.listeners_m.size(); ++l)
+      for (std::size_t k = 0; k < ns; ++k) {
+        const double v = std::abs(result.series[f][l * ns + k]);
+        peak = std::max(peak, v);
+        if (k > ns - 1000) late = std::max(late, v);
+      }
+    std::printf("field %d at the CFL limit: peak %.3g, largest of the last 1000 steps %.3g (%.1f dB)\n",
+                spec.fields[f], peak, late, 20 * std::log10(late / peak + 1e-300));
+    EXPECT_LT(late, 1e-3 * peak) << "field " << spec.fields[f];
   }
 }

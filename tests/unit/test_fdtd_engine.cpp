@@ -111,12 +111,15 @@ struct SerialPair {
     const float* in = engine[from]->pressure();
     // Writing another block's halo is what an exchange is for; the engine hands out p^n read-only.
     auto* out = const_cast<float*>(engine[to]->pressure());
-    for (int j = 0; j < src.count[1]; ++j)
-      for (int k = 0; k < src.count[2]; ++k) {
-        const long s = src.start[0] * layout[from]->stride[0] + (src.start[1] + j) * layout[from]->stride[1] + src.start[2] + k;
-        const long d = dst.start[0] * layout[to]->stride[0] + (dst.start[1] + j) * layout[to]->stride[1] + dst.start[2] + k;
-        out[d] = in[s];
-      }
+    for (int i = 0; i < src.count[0]; ++i)
+      for (int j = 0; j < src.count[1]; ++j)
+        for (int k = 0; k < src.count[2]; ++k) {
+          const long s = (src.start[0] + i) * layout[from]->stride[0] + (src.start[1] + j) * layout[from]->stride[1] +
+                         src.start[2] + k;
+          const long d = (dst.start[0] + i) * layout[to]->stride[0] + (dst.start[1] + j) * layout[to]->stride[1] +
+                         dst.start[2] + k;
+          out[d] = in[s];
+        }
   }
 };
 
