@@ -75,7 +75,15 @@ def raw_solve(args, config, tmp, b, c, points, fields="[1, 2, 3, 4, 5, 6]"):
         cmd += ["--set", f"{key}={toml_value(config, s, k)}"]
     tail = float(toml_value(config, "time", "tail_s"))
     c_m_s = float(toml_value(config, "medium", "c_m_s"))
-    cmd += ["--set", f"grid.half_width_m={max(radii) + 3 * dx!r}", "--set", "grid.octant=true",
+    try:
+        scheme = toml_value(config, "solver", "scheme").strip('"')
+    except KeyError:
+        scheme = "me4"
+    # The domain of the bank's own solves (jobs/pan_spec.cpp): 3 cells past the largest radius, and
+    # 8 more for me4's blend into the PML.
+    margin = 3 + (8 if scheme == "me4" else 0)
+    cmd += ["--set", f"solver.scheme={scheme}"]
+    cmd += ["--set", f"grid.half_width_m={max(radii) + margin * dx!r}", "--set", "grid.octant=true",
             "--set", f"time.duration_s={max(radii) / c_m_s + tail!r}", "--set", "object.a_m=0.5",
             "--set", f"object.b_m={b!r}", "--set", f"object.c_m={c!r}", "--set", f"solve.fields={fields}",
             "--set", f"listeners.points_m={pts}"]

@@ -30,8 +30,8 @@ clatter_error_test(bad_solve_no_listeners 0 "'listeners.points_m' is empty" solv
 clatter_error_test(bad_pan_proxy_order 0 "'proxies.list_m' proxy 1 = [0.2, 0.3];C <= B <= A = 0.5"
                    pan "--set=proxies.list_m=[[0.2, 0.3]]" -o out.h5)
 clatter_error_test(bad_pan_odd_divisions 0 "'fit.divisions' has 7;must be even" pan --set fit.divisions=7 -o out.h5)
-clatter_error_test(bad_pan_radius_inside 0 "'fit.radii_m' has 0.55;outside the bounding sphere (A = 0.5 m) by two cells"
-                   pan "--set=fit.radii_m=[0.55, 1.0]" -o out.h5)
+clatter_error_test(bad_pan_radius_inside 0 "'fit.radii_m' has 0.51;outside the bounding sphere (A = 0.5 m) by two cells"
+                   pan "--set=fit.radii_m=[0.51, 1.0]" -o out.h5)
 clatter_error_test(bad_pan_too_few_radii 0 "'fit.radii_m' has 1 radii;at least fit.terms = 2" pan "--set=fit.radii_m=[1.0]" -o out.h5)
 clatter_error_test(bad_pan_cfl_np2 2 "'time.dt_s' = 0.0001;CFL limit" pan --set grid.dx_m=0.01 --set time.dt_s=1e-4 -o out.h5)
 

@@ -10,33 +10,37 @@ namespace clatter::kernels::fdtd {
 
 namespace {
 
-// One z row of the me4 bulk update. Cloned for AVX-512, AVX2 and the baseline: the loop is
-// bound by its 25 loads per cell, which wider vectors divide. Each cell's arithmetic is the same
-// in every clone (no FMA contraction, -ffp-contract=off), so the bits do not depend on the CPU.
-// Every group pairs points that a mirror across x, y or z swaps, and groups are added in a fixed
-// order, so mirrored cells round identically (octant mode is bit-exact, docs/fdtd.md).
+// The three neighbour sums of the me4 stencil at cell k of the row p (strides sx, sy): the 6 axis
+// neighbours, the 6 at distance 2, and the 12 face diagonals. Every group pairs points that a
+// mirror across x, y or z swaps, and groups are added in a fixed order, so mirrored cells round
+// identically (octant mode is bit-exact, docs/fdtd.md).
+struct Me4Sums {
+  float ring1, ring2, diag;
+};
+inline Me4Sums me4_sums(const float* p, long sx, long sy, int k) {
+  const float* xm = p - sx;
+  const float* xp = p + sx;
+  const float* ym = p - sy;
+  const float* yp = p + sy;
+  Me4Sums s;
+  s.ring1 = ((xm[k] + xp[k]) + (ym[k] + yp[k])) + (p[k - 1] + p[k + 1]);
+  s.ring2 = ((p[k - 2 * sx] + p[k + 2 * sx]) + (p[k - 2 * sy] + p[k + 2 * sy])) + (p[k - 2] + p[k + 2]);
+  const float dxy = (xm[k - sy] + xp[k + sy]) + (xp[k - sy] + xm[k + sy]);
+  const float dxz = (xm[k - 1] + xp[k + 1]) + (xp[k - 1] + xm[k + 1]);
+  const float dyz = (ym[k - 1] + yp[k + 1]) + (yp[k - 1] + ym[k + 1]);
+  s.diag = (dxy + dxz) + dyz;
+  return s;
+}
+
+// One z row of the me4 bulk update. Cloned for AVX-512, AVX2 and the baseline: wider vectors
+// divide its 25 loads per cell. Each cell's arithmetic is the same in every clone (no FMA
+// contraction, -ffp-contract=off), so the bits do not depend on the CPU.
 __attribute__((target_clones("avx512f", "avx2", "default")))
 void me4_row(const float* __restrict p, float* __restrict q, long sx, long sy, int nk, Operator::Me4 c) {
-  const float* __restrict xm = p - sx;
-  const float* __restrict xp = p + sx;
-  const float* __restrict xm2 = p - 2 * sx;
-  const float* __restrict xp2 = p + 2 * sx;
-  const float* __restrict ym = p - sy;
-  const float* __restrict yp = p + sy;
-  const float* __restrict ym2 = p - 2 * sy;
-  const float* __restrict yp2 = p + 2 * sy;
-  const float* __restrict xmym = p - sx - sy;
-  const float* __restrict xpyp = p + sx + sy;
-  const float* __restrict xpym = p + sx - sy;
-  const float* __restrict xmyp = p - sx + sy;
 #pragma omp simd
   for (int k = 0; k < nk; ++k) {
-    const float ring1 = ((xm[k] + xp[k]) + (ym[k] + yp[k])) + (p[k - 1] + p[k + 1]);
-    const float ring2 = ((xm2[k] + xp2[k]) + (ym2[k] + yp2[k])) + (p[k - 2] + p[k + 2]);
-    const float dxy = (xmym[k] + xpyp[k]) + (xpym[k] + xmyp[k]);
-    const float dxz = (xm[k - 1] + xp[k + 1]) + (xp[k - 1] + xm[k + 1]);
-    const float dyz = (ym[k - 1] + yp[k + 1]) + (yp[k - 1] + ym[k + 1]);
-    q[k] = ((c.c0 * p[k] - q[k]) + (c.c1 * ring1 + c.c2 * ring2)) + c.c3 * ((dxy + dxz) + dyz);
+    const Me4Sums s = me4_sums(p, sx, sy, k);
+    q[k] = ((c.c0 * p[k] - q[k]) + (c.c1 * s.ring1 + c.c2 * s.ring2)) + c.c3 * s.diag;
   }
 }
 
@@ -45,27 +49,11 @@ void me4_row(const float* __restrict p, float* __restrict q, long sx, long sy, i
 __attribute__((target_clones("avx512f", "avx2", "default")))
 void blend_row(const float* __restrict p, float* __restrict q, long sx, long sy, int k0, int k1,
                const float* __restrict theta_z, float theta_xy, float d0, float d1, float d2, float d3) {
-  const float* __restrict xm = p - sx;
-  const float* __restrict xp = p + sx;
-  const float* __restrict xm2 = p - 2 * sx;
-  const float* __restrict xp2 = p + 2 * sx;
-  const float* __restrict ym = p - sy;
-  const float* __restrict yp = p + sy;
-  const float* __restrict ym2 = p - 2 * sy;
-  const float* __restrict yp2 = p + 2 * sy;
-  const float* __restrict xmym = p - sx - sy;
-  const float* __restrict xpyp = p + sx + sy;
-  const float* __restrict xpym = p + sx - sy;
-  const float* __restrict xmyp = p - sx + sy;
 #pragma omp simd
   for (int k = k0; k < k1; ++k) {
-    const float ring1 = ((xm[k] + xp[k]) + (ym[k] + yp[k])) + (p[k - 1] + p[k + 1]);
-    const float ring2 = ((xm2[k] + xp2[k]) + (ym2[k] + yp2[k])) + (p[k - 2] + p[k + 2]);
-    const float dxy = (xmym[k] + xpyp[k]) + (xpym[k] + xmyp[k]);
-    const float dxz = (xm[k - 1] + xp[k + 1]) + (xp[k - 1] + xm[k + 1]);
-    const float dyz = (ym[k - 1] + yp[k + 1]) + (yp[k - 1] + ym[k + 1]);
+    const Me4Sums s = me4_sums(p, sx, sy, k);
     const float theta = theta_xy > theta_z[k] ? theta_xy : theta_z[k];
-    q[k] += theta * (((d0 * p[k] + d1 * ring1) + d2 * ring2) + d3 * ((dxy + dxz) + dyz));
+    q[k] += theta * (((d0 * p[k] + d1 * s.ring1) + d2 * s.ring2) + d3 * s.diag);
   }
 }
 
