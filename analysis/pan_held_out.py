@@ -72,9 +72,10 @@ def main():
                 for i, x in enumerate(points):
                     t, p = probe(a, a.bank, b, c, field, x)
                     raw = series[i]
-                    # A field the proxy does not radiate here (a needle turning about its own axis)
+                    # A field the proxy does not radiate (a sphere or a needle turning about its own
+                    # axis: zero in the continuum, 1e-5 of the others from the cut cells' sampling)
                     # has no relative error to speak of.
-                    if np.linalg.norm(raw) <= 1e-9 * max(np.linalg.norm(fields[f]) for f in fields):
+                    if np.linalg.norm(raw) <= 1e-3 * max(np.linalg.norm(fields[f]) for f in fields):
                         continue
                     pan = np.interp(t_raw, t, p, left=0.0, right=0.0)
                     errs.append(np.linalg.norm(pan - raw) / np.linalg.norm(raw))
