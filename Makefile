@@ -61,7 +61,7 @@ bench: build
 	$(BUILD)/bin/clatter-bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
 	    --benchmark_out=out/bench/bench.json --benchmark_out_format=json
 	bench/fdtd.sh $(BUILD) 3 | tee out/bench/fdtd.txt
-	test -f out/bench/pan.h5 || mpiexec -n 2 $(BUILD)/bin/clatter-bank pan -c configs/pan-demo.toml -o out/bench/pan.h5
+	test -f out/bench/pan.h5 || mpiexec -n 2 $(BUILD)/bin/clatter-bank pan -c configs/pan-demo.toml --set 'proxies.list_m=[]' -o out/bench/pan.h5
 	$(BUILD)/bin/clatter-synth-bench out/bench/pan.h5 5 | tee out/bench/synth.txt
 	test -f out/bench/modal.h5 || mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-demo.toml -o out/bench/modal.h5
 	$(BUILD)/bin/clatter-synth-bench out/bench/pan.h5 5 210741 out/bench/modal.h5 | tee out/bench/synth-modal.txt
