@@ -97,6 +97,7 @@ void Engine::start(int field) {
 void Engine::step(double t_s) {
   halo_.start(now_.data());
   keep_cut_cell_old();
+  fill_z_mirror_ghosts();
   {
     Stage s("interior");
     update_bulk(op_.inner_box());
@@ -121,9 +122,26 @@ void Engine::step(double t_s) {
   now_.swap(next_);
 }
 
+// Ghost layers -1 and -2 across the z mirror plane of the block's own rows := parity x layers 0
+// and 1, before the interior: they need no halo, and the interior then covers k = 0 and 1 too.
+void Engine::fill_z_mirror_ghosts() {
+  if (!op_.problem().grid.octant || op_.layout().owned.lo[2] != 0) return;
+  const Layout& layout = op_.layout();
+  const Box& o = layout.owned;
+  const float sign = static_cast<float>(field_parity(field_, 2));
+  for (int i = o.lo[0]; i < o.hi[0]; ++i)
+    for (int j = o.lo[1]; j < o.hi[1]; ++j) {
+      float* row = now_.data() + layout.at(i, j, 0);
+      row[-1] = sign * row[0];
+      row[-2] = sign * row[1];
+    }
+}
+
 // Ghost layers -1 and -2 across each mirror plane := parity x layers 0 and 1. Runs after the halo
 // has arrived and covers the whole storage extent of the other axes, axis after axis, so ghosts
 // across two planes (read by face-diagonal points) are mirrored twice and halo cells mirror too.
+// The z ghosts of the block's own rows are already there (fill_z_mirror_ghosts); only the rows
+// of the halo are left for the z pass.
 void Engine::fill_mirror_ghosts() {
   if (!op_.problem().grid.octant) return;
   const Layout& layout = op_.layout();
@@ -141,12 +159,14 @@ void Engine::fill_mirror_ghosts() {
     plane.hi[a] = 1;
     const long s = layout.stride[a];
     for (int i = plane.lo[0]; i < plane.hi[0]; ++i)
-      for (int j = plane.lo[1]; j < plane.hi[1]; ++j)
+      for (int j = plane.lo[1]; j < plane.hi[1]; ++j) {
+        if (a == 2 && i >= o.lo[0] && i < o.hi[0] && j >= o.lo[1] && j < o.hi[1]) continue;  // done before
         for (int k = plane.lo[2]; k < plane.hi[2]; ++k) {
           const long here = layout.at(i, j, k);
           for (int g = 1; g <= h; ++g)  // ghost -g mirrors layer g - 1
             now_[static_cast<std::size_t>(here - g * s)] = sign * now_[static_cast<std::size_t>(here + (g - 1) * s)];
         }
+      }
   }
 }
 

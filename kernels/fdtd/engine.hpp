@@ -28,6 +28,7 @@ class Engine {
   float value(const std::array<int, 3>& cell) const { return now_[static_cast<std::size_t>(layout().at(cell))]; }
 
  private:
+  void fill_z_mirror_ghosts();
   void fill_mirror_ghosts();
   void keep_cut_cell_old();
   void update_bulk(const Box& box);
