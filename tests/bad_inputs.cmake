@@ -34,6 +34,10 @@ clatter_error_test(bad_pan_radius_inside 0 "'fit.radii_m' has 0.51;outside the b
                    pan "--set=fit.radii_m=[0.51, 1.0]" -o out.h5)
 clatter_error_test(bad_pan_too_few_radii 0 "'fit.radii_m' has 1 radii;at least fit.terms = 2" pan "--set=fit.radii_m=[1.0]" -o out.h5)
 clatter_error_test(bad_pan_cfl_np2 2 "'time.dt_s' = 0.0001;CFL limit" pan --set grid.dx_m=0.01 --set time.dt_s=1e-4 -o out.h5)
+clatter_error_test(bad_solve_scheme 0 "--set 'solver.scheme=iwb';'solver.scheme' = 'iwb';must be one of me4, srl"
+                   solve --set solver.scheme=iwb -o out.h5)
+clatter_error_test(bad_solve_listener_in_blend 0 "'listeners.points_m' point 1 = [0.97, 0, 0];within 8 cells of the absorbing layer;grow grid.half_width_m"
+                   solve "--set=listeners.points_m=[[0.97, 0, 0]]" -o out.h5)
 
 # command-line options
 clatter_error_test(bad_no_subcommand 0 "A subcommand is required;clatter-bank --help")
