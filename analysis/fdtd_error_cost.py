@@ -8,7 +8,7 @@ For each scheme (srl, me4) and cell size, runs `clatter-bank solve` on one rank 
 in octant mode (h = 1e-4 s, Courant 0.55 as at the paper's 6.5 mm and 1/96000 s), listeners at
 `distance` along a grid axis, a face diagonal and the body diagonal, and measures each series'
 relative L2 error against the exact field rho psi(t - r/c) / (4 pi r) (computed here from 000's
-eq. 6, independently of the C++). It also reads the solve's own prediction (the error budget's
+eq. 6 in numpy, analysis/field_check.py, independently of the C++). It also reads the solve's own prediction (the error budget's
 dispersion term, docs/fdtd.md) from its log.
 
 Cost is in core-seconds: the solve's cell-updates divided by each scheme's per-core rate. The rates
@@ -29,15 +29,10 @@ import tempfile
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from field_check import psi  # noqa: E402  (000's eq. 6 in numpy, the analysis' one copy)
+
 DIRECTIONS = [("axis", (1, 0, 0)), ("face diagonal", (1, 1, 0)), ("body diagonal", (1, 1, 1))]
-
-
-def psi(t, h):
-    """000's eq. 6, the Mitchell-Netravali pulse of width h (support [-2h, 2h], unit sum of shifts)."""
-    a = np.abs(t) / h
-    y = 1 - a
-    u = 1 + y
-    return np.where(a <= 1, (((-15 * y + 18) * y + 9) * y + 2) / 18, np.where(a < 2, u * u * (5 * u - 3) / 18, 0.0))
 
 
 def run(bank, scheme, dx, distance, work):

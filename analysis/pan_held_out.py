@@ -20,14 +20,8 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from field_check import psi  # noqa: E402
 from pan_plots import HELD_OUT, bank_info, probe, raw_solve, toml_value  # noqa: E402
-
-
-def psi(t, h):
-    a = np.abs(t) / h
-    y = 1 - a
-    u = 1 + y
-    return np.where(a <= 1, (((-15 * y + 18) * y + 9) * y + 2) / 18, np.where(a < 2, u * u * (5 * u - 3) / 18, 0.0))
 
 
 def exact_sphere(a, c, rho, h, r, cos_theta, t):

@@ -7,7 +7,7 @@
 
 #include "core/errors.hpp"
 #include "jobs/medium_keys.hpp"
-#include "kernels/fdtd/listeners.hpp"
+#include "kernels/fdtd/problem.hpp"
 #include "kernels/pan/directions.hpp"
 #include "kernels/pan/fit.hpp"
 #include "kernels/pan/wavelet.hpp"
@@ -109,8 +109,10 @@ SolveParams proxy_solve_params(const PanParams& in, const PanSpec& spec) {
   s.medium_rho_kg_m3 = in.medium_rho_kg_m3;
   s.pulse_h_s = in.pulse_h_s;
   s.grid_dx_m = in.grid_dx_m;
-  // Room for the listeners' tricubic stencils (2 cells) and, for me4, the blend into the layer.
-  s.grid_half_width_m = r_max + (3 + (in.solver_scheme == "me4" ? kernels::fdtd::kBlendCells : 0)) * in.grid_dx_m;
+  // Room for the listeners' tricubic stencils (2 cells) and, for me4, the blend into the layer (an
+  // unknown scheme is make_solve_spec's error).
+  const auto scheme = kernels::fdtd::scheme_from_name(in.solver_scheme).value_or(kernels::fdtd::Scheme::srl);
+  s.grid_half_width_m = r_max + (3 + kernels::fdtd::blend_cells(scheme, in.grid_pml_cells)) * in.grid_dx_m;
   s.grid_pml_cells = in.grid_pml_cells;
   s.grid_octant = true;
   s.time_dt_s = in.time_dt_s;

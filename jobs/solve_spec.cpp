@@ -85,9 +85,10 @@ SolveSpec make_solve_spec(const SolveParams& in) {
   p.dt_s = in.time_dt_s;
   p.cut_cell_samples = in.solver_cut_cell_samples;
   p.pml_reflection = in.solver_pml_reflection;
-  if (in.solver_scheme != "me4" && in.solver_scheme != "srl")
+  const auto scheme = fdtd::scheme_from_name(in.solver_scheme);
+  if (!scheme)
     throw InputError(fmt::format("config: key 'solver.scheme' = \"{}\": must be one of me4, srl", in.solver_scheme));
-  p.scheme = in.solver_scheme == "srl" ? fdtd::Scheme::srl : fdtd::Scheme::me4;
+  p.scheme = *scheme;
   const double dx = in.grid_dx_m;
   const bool monopole = in.object_kind == "monopole";
   p.body = {in.object_a_m, in.object_b_m, in.object_c_m};

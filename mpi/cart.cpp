@@ -38,9 +38,9 @@ std::array<int, 3> CartTopology::local_count() const {
 }
 
 int CartTopology::neighbor(int axis, int dir) const {
-  int source = MPI_PROC_NULL, dest = MPI_PROC_NULL;
-  check(MPI_Cart_shift(cart_.get(), axis, dir, &source, &dest), "MPI_Cart_shift");
-  return dest;
+  std::array<int, 3> offset{};
+  offset[axis] = dir;
+  return neighbor(offset);
 }
 
 int CartTopology::neighbor(const std::array<int, 3>& offset) const {

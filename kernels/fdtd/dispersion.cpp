@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <vector>
 
 #include "kernels/pulse.hpp"
 
@@ -49,8 +50,28 @@ double pulse_band_edge_hz(double h_s) {
   return f;
 }
 
-double dispersion_error(Scheme scheme, double courant, double dx_m, double c_m_s, double h_s, double distance_m,
-                        const double (&direction)[3]) {
+namespace {
+
+// |psi^(f)|^2 at the midpoints of n bins up to where psi^ is 1e-6 of its peak or the time grid's
+// Nyquist frequency: the weights of every direction's error, computed once per solve.
+struct Spectrum {
+  double f_top = 0;
+  std::vector<double> weight;
+};
+
+Spectrum pulse_power(double h_s, double dt_s) {
+  constexpr int n = 2000;
+  Spectrum s;
+  s.f_top = std::min(8.0 / h_s, 0.5 / dt_s);
+  for (int i = 0; i < n; ++i) {
+    const double a = pulse_spectrum(h_s, (i + 0.5) * s.f_top / n);
+    s.weight.push_back(a * a);
+  }
+  return s;
+}
+
+double direction_error(const Spectrum& spectrum, Scheme scheme, double courant, double dx_m, double c_m_s,
+                       double distance_m, const double (&direction)[3]) {
   const double norm = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
   const double d[3] = {direction[0] / norm, direction[1] / norm, direction[2] / norm};
   const double dt = courant * dx_m / c_m_s;
@@ -64,13 +85,11 @@ double dispersion_error(Scheme scheme, double courant, double dx_m, double c_m_s
     return 2.0 * std::asin(std::sqrt(s)) / dt;
   };
   const double omega_max = omega(k_dx_max);
-  // Frequencies up to where psi^ is 1e-6 of its peak, or the time grid's Nyquist frequency.
-  const double f_top = std::min(8.0 / h_s, 0.5 / dt);
-  constexpr int n = 2000;
+  const std::size_t n = spectrum.weight.size();
   double num = 0, den = 0;
-  for (int i = 0; i < n; ++i) {
-    const double f = (i + 0.5) * f_top / n, w = 2 * kPi * f;
-    const double a = pulse_spectrum(h_s, f), weight = a * a;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double f = (static_cast<double>(i) + 0.5) * spectrum.f_top / static_cast<double>(n), w = 2 * kPi * f;
+    const double weight = spectrum.weight[i];
     den += weight;
     if (w >= omega_max) {  // not carried by the grid in this direction
       num += weight;
@@ -87,11 +106,20 @@ double dispersion_error(Scheme scheme, double courant, double dx_m, double c_m_s
   return std::sqrt(num / den);
 }
 
+}  // namespace
+
+double dispersion_error(Scheme scheme, double courant, double dx_m, double c_m_s, double h_s, double distance_m,
+                        const double (&direction)[3]) {
+  const Spectrum spectrum = pulse_power(h_s, courant * dx_m / c_m_s);
+  return direction_error(spectrum, scheme, courant, dx_m, c_m_s, distance_m, direction);
+}
+
 double worst_dispersion_error(Scheme scheme, double courant, double dx_m, double c_m_s, double h_s, double distance_m) {
+  const Spectrum spectrum = pulse_power(h_s, courant * dx_m / c_m_s);
   double worst = 0;
   for (const auto& d : {std::array<double, 3>{1, 0, 0}, std::array<double, 3>{1, 1, 0}, std::array<double, 3>{1, 1, 1}}) {
     const double dir[3] = {d[0], d[1], d[2]};
-    worst = std::max(worst, dispersion_error(scheme, courant, dx_m, c_m_s, h_s, distance_m, dir));
+    worst = std::max(worst, direction_error(spectrum, scheme, courant, dx_m, c_m_s, distance_m, dir));
   }
   return worst;
 }

@@ -48,18 +48,18 @@ std::optional<std::string> listener_problem(const Problem& problem, const std::a
   const Stencil fs = listener_stencil(full, x_m);
   const Box full_all = full.grid.all();
   const Box full_interior = full.grid.interior();
-  // me4 blends into the 7-point layer over the last Operator::kBlendCells cells before it (8).
+  // me4 blends into the 7-point layer over the last cells before it.
+  const int blend = blend_cells(problem.scheme, g.pml);
   Box unblended = full_interior;
-  if (problem.scheme == Scheme::me4 && g.pml > 0)
-    for (int a = 0; a < 3; ++a) {
-      unblended.lo[a] += kBlendCells;
-      unblended.hi[a] -= kBlendCells;
-    }
+  for (int a = 0; a < 3; ++a) {
+    unblended.lo[a] += blend;
+    unblended.hi[a] -= blend;
+  }
   for (const auto& c : fs.cell) {
     if (!full_all.contains(c)) return std::string("outside the domain");
     if (!full_interior.contains(c)) return std::string("inside the absorbing layer (PML)");
     if (!unblended.contains(c))
-      return std::string("within ") + std::to_string(kBlendCells) +
+      return std::string("within ") + std::to_string(blend) +
              " cells of the absorbing layer, where the scheme blends into it (grow grid.half_width_m)";
   }
   if (problem.field != 0) {

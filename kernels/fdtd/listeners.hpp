@@ -12,10 +12,6 @@
 
 namespace clatter::kernels::fdtd {
 
-// Cells before the PML over which the me4 scheme blends into the layer's 7-point update
-// (Operator::blend); listeners must lie beyond them.
-inline constexpr int kBlendCells = 8;
-
 struct Stencil {
   static constexpr int kPoints = 4;                        // per axis
   static constexpr int kCorners = kPoints * kPoints * kPoints;

@@ -9,6 +9,12 @@ namespace clatter::kernels::fdtd {
 
 const char* scheme_name(Scheme s) { return s == Scheme::srl ? "srl" : "me4"; }
 
+std::optional<Scheme> scheme_from_name(std::string_view name) {
+  if (name == "me4") return Scheme::me4;
+  if (name == "srl") return Scheme::srl;
+  return std::nullopt;
+}
+
 namespace {
 // The me4 stencil's points besides the centre: axis neighbours at 1 and 2, and face diagonals.
 std::vector<std::array<int, 3>> me4_offsets() {
@@ -49,14 +55,14 @@ Operator::Operator(const Problem& problem, const Box& owned)
   me4_.c2 = static_cast<float>(-l2 / 12.0 + mu);
   me4_.c3 = static_cast<float>(2.0 * mu);
   const Grid& g = problem.grid;
+  const int blend = blend_cells(problem.scheme, g.pml);
   for (int a = 0; a < 3; ++a) {
     blend_[a].assign(static_cast<std::size_t>(g.n[a]), 0.0f);
-    if (problem.scheme != Scheme::me4 || g.pml == 0) continue;
-    for (int i = 0; i < g.n[a]; ++i) {
+    for (int i = 0; i < g.n[a] && blend > 0; ++i) {
       // Distance in cells from the layer's inner face, on the high side and (full mode) the low.
       double d = (g.n[a] - g.pml - 0.5) - i;
       if (!g.octant) d = std::min(d, i - (g.pml - 0.5));
-      const double s = 1.0 - d / kBlendCells;  // 1 at the layer, 0 kBlendCells inside
+      const double s = 1.0 - d / blend;  // 1 at the layer, 0 `blend` cells inside
       if (s > 0) blend_[a][static_cast<std::size_t>(i)] = static_cast<float>(std::min(1.0, s * s * (3.0 - 2.0 * s)));
     }
   }

@@ -8,7 +8,6 @@
 #include <utility>
 #include <vector>
 
-#include "kernels/fdtd/listeners.hpp"
 #include "kernels/fdtd/pml.hpp"
 #include "kernels/fdtd/problem.hpp"
 
@@ -52,10 +51,9 @@ class Operator {
   };
   const Me4& me4() const { return me4_; }
   // me4 only: per axis and global cell index, the weight theta of the 7-point update in the cells
-  // before the PML, rising smoothly from 0 to 1 over kBlendCells so that the scheme meets the
-  // (7-point) layer gradually instead of reflecting at an abrupt change of dispersion. A cell uses
-  // the largest theta of its three indices: p+ = me4 + theta (srl - me4).
-  static constexpr int kBlendCells = fdtd::kBlendCells;
+  // before the PML, rising smoothly from 0 to 1 over blend_cells() cells so that the scheme meets
+  // the (7-point) layer gradually instead of reflecting at an abrupt change of dispersion. A cell
+  // uses the largest theta of its three indices: p+ = me4 + theta (srl - me4).
   const std::array<std::vector<float>, 3>& blend() const { return blend_; }
 
   struct Counts {

@@ -1,4 +1,7 @@
 #pragma once
+#include <optional>
+#include <string_view>
+
 #include "kernels/fdtd/geometry.hpp"
 #include "kernels/fdtd/grid.hpp"
 
@@ -14,6 +17,13 @@ enum class Scheme {
   me4,
 };
 const char* scheme_name(Scheme s);
+// The scheme named `name` ("me4" or "srl"), or nullopt.
+std::optional<Scheme> scheme_from_name(std::string_view name);
+
+// Cells before the PML over which me4 blends into the layer's 7-point update (Operator::blend);
+// listeners must lie beyond them. 0 for srl, or without a layer.
+inline constexpr int kBlendCells = 8;
+inline int blend_cells(Scheme s, int pml_cells) { return s == Scheme::me4 && pml_cells > 0 ? kBlendCells : 0; }
 
 // Everything one FDTD solve needs, in SI units. Built and validated by jobs/solve_job.cpp.
 struct Problem {
