@@ -3,7 +3,9 @@
 #   make demo                 a 3-proxy PAN bank, a 3-ellipsoid modal bank and a 3-ground ground bank
 #                             on 2 ranks (out/demo/), their summaries, and the demo scene rendered with
 #                             PAN, modal and ground sound
-#                             (out/demo/debris.wav, its stems and spectrogram)
+#                             (out/demo/debris.wav, its stems and spectrogram); then the two simulated
+#                             scenes of scenes/*.toml (clatter-sim: a rock slide and a shattering
+#                             plate) and the plate rendered with every source (out/demo/plate.wav)
 #   make test                 every test (ctest), in build/$(PRESET), then `make fuzz`
 #   make fuzz                 the libFuzzer harnesses of the readers, 30 s each (preset fuzz, clang-14)
 #   make bench                Google Benchmark suite, JSON in out/bench/
@@ -43,6 +45,11 @@ demo: build
 	$(BUILD)/bin/clatter-bank info out/demo/ground.h5
 	$(BUILD)/bin/clatter-synth -i scenes/demo.json -b out/demo/bank.h5 -m out/demo/modal.h5 -g out/demo/ground.h5 -o out/demo/debris.wav --stems
 	$(PYTHON) analysis/spectrogram.py out/demo/debris.wav
+	$(BUILD)/bin/clatter-sim -c scenes/rockslide.toml -o out/demo/rockslide.json
+	$(BUILD)/bin/clatter-sim -c scenes/plate.toml -o out/demo/plate.json
+	mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-plate.toml -o out/demo/modal-plate.h5 --log-view
+	$(BUILD)/bin/clatter-synth -i out/demo/plate.json -b out/demo/bank.h5 -m out/demo/modal-plate.h5 -g out/demo/ground.h5 -o out/demo/plate.wav --stems
+	$(PYTHON) analysis/spectrogram.py out/demo/plate.wav
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300

@@ -26,6 +26,9 @@ packages=(
   libtoml11-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libsndfile1-dev
   # the synthesizer's kd-tree over the modal bank's ellipsoids (003 section 5.4; header only)
   libnanoflann-dev
+  # clatter-sim (sim/): the rigid-body simulator behind the example scenes, and the Voronoi
+  # pre-fracture of its plate and rocks
+  libbullet-dev voro++-dev
   # tests and benchmarks; clang-14 and its libFuzzer runtime (libclang_rt.fuzzer) for the fuzz preset
   libgtest-dev libbenchmark-dev clang-14 libclang-rt-14-dev
   # analysis scripts (run with /usr/bin/python3)

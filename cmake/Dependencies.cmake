@@ -55,6 +55,15 @@ add_library(clatter_tetgen INTERFACE)
 target_include_directories(clatter_tetgen SYSTEM INTERFACE ${TETGEN_INCLUDE_DIR})
 target_compile_definitions(clatter_tetgen INTERFACE TETLIBRARY)
 target_link_libraries(clatter_tetgen INTERFACE ${TETGEN_LIBRARY})
+# clatter-sim (sim/) only: Bullet's double-precision build (Debian libbullet-dev ships both; its
+# .pc file adds -DBT_USE_DOUBLE_PRECISION, which must match the library) and voro++ (Debian
+# voro++-dev: no CMake config or .pc, found by name; SYSTEM: its headers are not warning-free).
+pkg_check_modules(BULLET REQUIRED IMPORTED_TARGET bullet-float64>=2.89)
+find_path(VORO_INCLUDE_DIR voro++/voro++.hh REQUIRED)
+find_library(VORO_LIBRARY NAMES voro++ REQUIRED)
+add_library(clatter_voro INTERFACE)
+target_include_directories(clatter_voro SYSTEM INTERFACE ${VORO_INCLUDE_DIR})
+target_link_libraries(clatter_voro INTERFACE ${VORO_LIBRARY})
 find_package(GTest REQUIRED)
 find_package(benchmark REQUIRED)
 

@@ -208,7 +208,7 @@ void check_event(const ObjectIndex& objects, const SceneEvent& e, double previou
   if (!objects.count(e.a)) bad(e.where, fmt::format("object {} is not in the scene's objects", e.a));
   if (e.b != 0 && !objects.count(e.b)) bad(e.where, fmt::format("object {} is not in the scene's objects", e.b));
   if (e.b == e.a) bad(e.where, fmt::format("object {} collides with itself", e.a));
-  if (e.fracture) {
+  if (e.fracture || e.sustained) {
     if (!(e.contact_time_s > 0)) bad(e.where, fmt::format("contact_time_s {} s: must be > 0", e.contact_time_s));
   } else if (!(e.normal_speed_m_s > 0)) {
     bad(e.where, fmt::format("normal speed {} m/s: must be > 0", e.normal_speed_m_s));
@@ -241,7 +241,11 @@ Scene read_scene(const std::string& path, bool read_events) {
       bad(e.where + ".b", b.dump() + ": expected an object id, \"ground\" or \"fracture\"");
     e.point_m = vec<3>(need(j, "point_m", e.where), e.where + ".point_m");
     e.impulse_n_s = vec<3>(need(j, "impulse_n_s", e.where), e.where + ".impulse_n_s");
-    if (e.fracture)
+    // A contact gives its approach speed (Hertz) or, sustained, the time its force lasted.
+    if (!e.fracture && j.contains("contact_time_s") == j.contains("normal_speed_m_s"))
+      bad(e.where, "a contact event needs exactly one of normal_speed_m_s and contact_time_s");
+    e.sustained = !e.fracture && j.contains("contact_time_s");
+    if (e.fracture || e.sustained)
       e.contact_time_s = number(need(j, "contact_time_s", e.where), e.where + ".contact_time_s");
     else
       e.normal_speed_m_s = number(need(j, "normal_speed_m_s", e.where), e.where + ".normal_speed_m_s");

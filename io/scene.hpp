@@ -54,6 +54,10 @@ struct SceneEvent {
   // A fracture impulse (003 section 3.3): the piece a is pushed off its parent by the released
   // strain energy over contact_time_s (003 eq. 5's tau) instead of a Hertz contact; b is 0.
   bool fracture = false;
+  // A sustained contact (resting, sliding, rolling): a force that lasted contact_time_s, whose
+  // duration the simulator knows, instead of an impact whose Hertz duration follows from the
+  // normal speed. Rendered as a half-sine of that length, like a fracture impulse.
+  bool sustained = false;
   double contact_time_s = 0;
   Pose pose_a, pose_b;
   std::string where;                    // "FILE: events[i]" or "FILE:line", for messages
@@ -72,6 +76,12 @@ struct Scene {
 // Reads and validates a scene (without its events, for the side file of an impulse file);
 // InputError names the file, the JSON path and the value.
 Scene read_scene(const std::string& path, bool read_events = true);
+// Writes a scene in the native JSON form that read_scene reads back (objects given by numbers,
+// not meshes), with `generator` (any JSON object text, e.g. the simulator and its settings) as an
+// extra top-level key that readers ignore. Written to a temporary file and renamed, so an existing
+// file at `path` is replaced only by a complete one. Numbers are printed shortest round-trip, so
+// the bytes are a function of the values.
+void write_scene(const Scene& scene, const std::string& path, const std::string& generator_json = "{}");
 // Appends the events of a James-lab rigid-body impulse file (one event per line, "C ..." or
 // "P ...", docs/scene-format.md) to a scene read from its side file. Rest-pose contact points are
 // taken about each object's rest_centre_m, so objects given by meshes must be resolved first.

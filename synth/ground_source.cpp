@@ -172,6 +172,10 @@ void GroundSource::add_at(const Impact& im, double j_n_s, const Vec3& listener, 
   // 004: 4 eps = c_s t_c. A pulse shorter than a sample has no audible shape; the box average below
   // keeps its integral, so eta is raised to one sample before the bank's own clamps.
   double eta = c_s * im.tau_s / 4 / d_m;
+  if (im.sustained && eta > m.eta.back()) {
+    ++stats_.sustained_too_slow;
+    return;
+  }
   if (eta < dt_hat) eta = dt_hat, ++stats_.eta_below_sample;
   const Bracket be = bracket(m.elevation_rad, elevation_rad), bt = bracket(log_eta_, std::log(eta));
   if (be.clamped) ++stats_.elevation_outside;

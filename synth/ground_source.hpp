@@ -22,6 +22,10 @@ struct GroundStats {
   std::size_t eta_below_grid = 0;     // eta raised to the bank's eta_min
   std::size_t eta_above_grid = 0;     // eta lowered to the bank's eta_max
   std::size_t elevation_outside = 0;  // elevation clamped to the bank's grid
+  // Sustained contacts (resting, sliding) whose load is slower than the bank's largest eta: a
+  // quasi-static load radiates less than the slowest series, so they are skipped, not clamped
+  // (clamping would sound a slow load as a click of its whole impulse).
+  std::size_t sustained_too_slow = 0;
 };
 
 // The ground as the source uses it: the bank's material, as a half-space, and the bank's air.

@@ -50,11 +50,21 @@ void ModalSource::add(const Impact& im, const std::vector<Vec3>& listeners, int 
     const Vec3 body = rotate_inverse(im.pose.orientation_wxyz, {listeners[l][0] - x0[0], listeners[l][1] - x0[1], listeners[l][2] - x0[2]});
     const Vec3 vp = kernels::modal::to_modal_frame(v.frame, body);
     const double r_m = std::sqrt(vp[0] * vp[0] + vp[1] * vp[1] + vp[2] * vp[2]);
-    if (!(r_m >= 2 * e.axes_m[2] * v.gamma))
-      throw InputError(fmt::format("listener ({}, {}, {}) is {:.4g} m from object {} at t = {} s: the modal transfer of its proxy "
-                                   "holds beyond {:.4g} m (twice its largest semi-axis)",
+    const double transfer_from_m = 2 * e.axes_m[2] * v.gamma;
+    if (!(r_m > im.model->proxy.a_m))
+      throw InputError(fmt::format("listener ({}, {}, {}) is {:.4g} m from object {} at t = {} s, inside its bounding sphere "
+                                   "(radius {:.4g} m)",
                                    listeners[l][0], listeners[l][1], listeners[l][2], r_m, im.model->object->id, im.t_s,
-                                   2 * e.axes_m[2] * v.gamma));
+                                   im.model->proxy.a_m));
+    // Outside the object but inside the region where its scaled proxy's multipoles hold: equi-
+    // frequency scaling made the proxy larger than the object (a low base frequency for its
+    // shape: an object outside the bank's patch). No transfer to this listener: skipped, named.
+    if (!(r_m >= transfer_from_m)) {
+      ++stats_.transfer_short;
+      auto& worst = transfer_short_[im.model->object->id];
+      worst = std::max(worst, transfer_from_m);
+      continue;
+    }
     kernels::transfer::pressure_magnitudes(v.transfer, Eigen::Vector3d(vp[0], vp[1], vp[2]) / v.gamma, p.data());
     const double t0_s = im.t_s + r_m / c_air;  // the sound leaves the proxy's centre at contact
     const double destroyed_s = im.model->object->destroyed_s;  // its modes stop (heard r / c later)

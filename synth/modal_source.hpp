@@ -7,6 +7,7 @@
 #include <complex>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,6 +49,10 @@ struct ModalStats {
   // Objects whose bank's last mode, scaled, falls below the top frequency (003 section 5.1: a bank
   // is all-frequency only for gamma small enough): their modes between the two are missing.
   std::size_t band_short = 0;
+  // Impact-listener pairs skipped because the listener lies inside the scaled proxy's multipole
+  // region though outside the object (an object whose proxy, scaled to its base frequency, is larger
+  // than itself); the objects are named by transfer_short_objects().
+  std::size_t transfer_short = 0;
   std::size_t excitations = 0, silent_modes = 0;  // mode-listener pairs excited; those with zero modal force or transfer
   kernels::modal::ResonatorCounts resonators;    // summed over listeners
 };
@@ -67,6 +72,10 @@ class ModalSource : public SoundSource {
   void finish(std::vector<std::vector<double>>& out) override;
 
   const ModalVoice& voice(std::size_t object) const { return voices_.at(object); }
+  // Object id -> the distance its scaled proxy's transfer needs, for objects skipped at a listener.
+  const std::map<int, double>& transfer_short_objects() const { return transfer_short_; }
+  // Objects whose shape lies outside their bank's patch (a/c below its min_ratio).
+  std::vector<std::string> coverage(const std::vector<ObjectModel>& models) const override;
   // u_k(x_c) . f / |f| of every rendered mode (per unit force), x_c the Appendix F point.
   std::vector<double> modal_forces(const Impact& impact) const;
   const ModalStats& stats() const { return stats_; }
@@ -86,6 +95,7 @@ class ModalSource : public SoundSource {
   std::vector<std::vector<std::vector<kernels::transfer::Multipole>>> multipoles_;  // [bank][entry], built on use
   std::vector<std::vector<std::unique_ptr<kernels::transfer::SurfaceLocator>>> locators_;  // the same
   std::vector<ModalVoice> voices_;
+  std::map<int, double> transfer_short_;
   std::vector<kernels::modal::ResonatorBank> listeners_;     // one resonator bank per listener
   std::vector<std::vector<std::size_t>> resonator_;          // [object][listener * modes + k]
   ModalStats stats_;

@@ -137,6 +137,7 @@ const std::vector<kernels::transfer::Multipole>& ModalSource::prepare_entry(std:
 void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& models, int rate_hz) {
   voices_.clear();
   resonator_.clear();
+  transfer_short_.clear();
   stats_ = {};
   for (const ObjectModel& m : models) {
     voices_.push_back(make_voice(scene, m, rate_hz));
@@ -153,6 +154,20 @@ void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& 
     (v.base_frequency_from == "scene" ? stats_.from_scene : v.base_frequency_from == "mesh" ? stats_.from_mesh : stats_.from_proxy)++;
   }
   listeners_.assign(scene.listeners_m.size(), kernels::modal::ResonatorBank(rate_hz));
+}
+
+std::vector<std::string> ModalSource::coverage(const std::vector<ObjectModel>& models) const {
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < models.size() && i < voices_.size(); ++i) {
+    const ModalVoice& v = voices_[i];
+    const auto& u = v.frame.unit_axes;  // a <= b <= c
+    const double ratio = u[0] / u[2], min_ratio = banks_[v.bank].header.min_ratio;
+    if (ratio < min_ratio * (1 - 1e-9))
+      lines.push_back(fmt::format("object {}: axis ratio a/c = {:.3f} is outside modal bank '{}''s patch (a/c >= {}): it rings "
+                                  "with the nearest entry's mode shapes, scaled to its base frequency {:.4g} Hz (from the {})",
+                                  models[i].object->id, ratio, names_[v.bank], min_ratio, v.base_frequency_hz, v.base_frequency_from));
+  }
+  return lines;
 }
 
 }  // namespace clatter::synth

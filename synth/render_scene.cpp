@@ -48,7 +48,8 @@ std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string
 namespace {
 
 // Contact duration and half-sine peak of one event. Hertz: effective mass and radius of the pair
-// (the ground: infinite mass, flat); a fracture impulse brings its own duration.
+// (the ground: infinite mass, flat); a fracture impulse or a sustained contact brings its own
+// duration.
 struct Contact {
   double tau_s = 0, peak_force_n = 0;
   Vec3 arm_a{}, arm_b{};
@@ -58,7 +59,7 @@ Contact event_contact(const io::Scene& scene, const io::SceneEvent& e, const Obj
   Contact c;
   c.arm_a = rotate_inverse(e.pose_a.orientation_wxyz, sub(e.point_m, e.pose_a.position_m));
   if (b) c.arm_b = rotate_inverse(e.pose_b.orientation_wxyz, sub(e.point_m, e.pose_b.position_m));
-  if (e.fracture) {
+  if (e.fracture || e.sustained) {
     c.tau_s = e.contact_time_s;
   } else {
     double inv_r = 1 / contact_radius(a->proxy, c.arm_a), inv_m = 1 / a->object->mass_kg;
@@ -89,6 +90,7 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
       sources.size(), std::vector<std::vector<double>>(scene.listeners_m.size(), std::vector<double>(n, 0.0)));
   for (SoundSource* s : sources) s->begin(scene, models, options.rate_hz);
   RenderStats local;
+  for (SoundSource* s : sources) local.coverage.push_back(s->coverage(models));
   Stage render_stage("render");
   for (const auto& e : scene.events) {
     Stage event_stage("event");  // one stage per event: per-impact stages would cost ~5 % here
@@ -116,6 +118,7 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
       im.contact_body_m = side == 0 ? contact.arm_a : contact.arm_b;
       im.pose = pose;
       im.on_ground = !b && !e.fracture;
+      im.sustained = e.sustained;
       im.point_world_m = e.point_m;
       im.impulse_world_n_s = {sign * e.impulse_n_s[0], sign * e.impulse_n_s[1], sign * e.impulse_n_s[2]};
       for (std::size_t s = 0; s < sources.size(); ++s) {
@@ -127,6 +130,7 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
       }
       ++local.impacts;
       if (e.fracture) ++local.fracture_impacts;
+      if (e.sustained) ++local.sustained_impacts;
     }
   }
   for (std::size_t s = 0; s < sources.size(); ++s) sources[s]->finish(out[s]);

@@ -18,6 +18,8 @@ struct RenderStats {
   std::size_t impacts = 0;          // object-side impacts rendered
   std::size_t skipped_inactive = 0; // impacts on objects not yet created or already destroyed
   std::size_t fracture_impacts = 0; // of `impacts`, fracture impulses (003 section 3.3)
+  std::size_t sustained_impacts = 0;  // of `impacts`, sustained contacts (resting, sliding)
+  std::vector<std::vector<std::string>> coverage;  // per source: objects outside its bank's coverage
 };
 
 // stems[s][l]: the samples of source s at listener l. Throws InputError (naming the scene file,

@@ -27,6 +27,21 @@ std::size_t PanSource::nearest_proxy(const kernels::ProxyFit& fit) const {
   return best;
 }
 
+std::vector<std::string> PanSource::coverage(const std::vector<ObjectModel>& models) const {
+  std::vector<std::string> lines;
+  for (const ObjectModel& m : models) {
+    const auto& fit = m.proxy;
+    const double b = bank_.header.a_m * fit.b_m / fit.a_m, c = bank_.header.a_m * fit.c_m / fit.a_m;
+    const model::PanProxy& p = bank_.proxies[nearest_proxy(fit)];
+    const double d = std::hypot(p.b_m - b, p.c_m - c);
+    if (d > kCoverage_m)
+      lines.push_back(fmt::format("object {}: shape (B, C) = ({:.3f}, {:.3f}) m at A = {} m; the nearest PAN proxy ({:.3f}, {:.3f}) "
+                                  "is {:.3f} m away (covered: within {:.3f} m): it sounds with that proxy's radiation",
+                                  m.object->id, b, c, bank_.header.a_m, p.b_m, p.c_m, d, kCoverage_m));
+  }
+  return lines;
+}
+
 void PanSource::add(const Impact& im, const std::vector<Vec3>& listeners, int rate_hz, std::vector<std::vector<double>>& out) {
   for (std::size_t l = 0; l < listeners.size(); ++l) add_at(im, listeners[l], rate_hz, out[l]);
 }

@@ -32,6 +32,7 @@ struct Impact {
   // What the ground source needs (synth/ground_source.hpp): whether the other body is the ground
   // (b = "ground", or a James-lab C line), the contact point and this object's impulse, world frame.
   bool on_ground = false;
+  bool sustained = false;  // a sustained contact (scene key contact_time_s on a contact event)
   Vec3 point_world_m{};
   Vec3 impulse_world_n_s{};
 };
@@ -49,6 +50,9 @@ class SoundSource {
                    std::vector<std::vector<double>>& out) = 0;
   // After the last impact: whatever the source deferred.
   virtual void finish(std::vector<std::vector<double>>& /*out*/) {}
+  // After begin: one line per object outside what the source's bank covers, saying why and what
+  // the source does with it instead (docs/synth.md "Coverage").
+  virtual std::vector<std::string> coverage(const std::vector<ObjectModel>& /*models*/) const { return {}; }
 };
 
 // Acceleration noise from a PAN bank: nearest proxy by shape, scaled by beta = a / A (eq. 10).
@@ -61,6 +65,12 @@ class PanSource : public SoundSource {
  private:
   void add_at(const Impact& impact, const Vec3& listener_world_m, int rate_hz, std::vector<double>& out) const;
   std::size_t nearest_proxy(const kernels::ProxyFit& fit) const;  // closest (B, C) at the bank's A
+ public:
+  // The distance in (B, C) within which an object counts as covered: half the diagonal of the
+  // paper's grid (0.0475 m steps at A = 0.5 m), the farthest its 66-proxy bank leaves any shape.
+  static constexpr double kCoverage_m = 0.0475 * 0.7071067811865476;
+  std::vector<std::string> coverage(const std::vector<ObjectModel>& models) const override;
+ private:
 
   model::PanBank bank_;  // as read, evaluated in place (kernels/pan)
 };

@@ -37,9 +37,11 @@ void print_ground_summary(const synth::GroundSource& ground, std::size_t listene
   const model::GroundMaterial& m = *ground.medium().material;
   std::printf("clatter-synth: ground: %zu impacts on '%s' rendered at %zu listener(s) (%zu pulling away from the ground, "
               "skipped); eta raised to one sample %zu, clamped to the bank's [%.3g, %.3g] %zu below and %zu above; "
-              "elevation clamped to [%.3g, %.3g] rad %zu (counts per impact and listener)\n",
+              "elevation clamped to [%.3g, %.3g] rad %zu; sustained contacts slower than eta_max, skipped %zu (counts per "
+              "impact and listener)\n",
               g.impacts, m.name.c_str(), listeners, g.skipped_upward, g.eta_below_sample, m.eta.front(), m.eta.back(),
-              g.eta_below_grid, g.eta_above_grid, m.elevation_rad.front(), m.elevation_rad.back(), g.elevation_outside);
+              g.eta_below_grid, g.eta_above_grid, m.elevation_rad.front(), m.elevation_rad.back(), g.elevation_outside,
+              g.sustained_too_slow);
 }
 
 // Peak and RMS of each source over all listeners, and the modal source's counts.
@@ -60,6 +62,13 @@ void print_summary(const std::vector<synth::SoundSource*>& sources, const std::v
               "resonators, %.3g mode-samples\n",
               m.objects, m.modes, m.skipped_high, m.skipped_low, options.min_frequency_hz, m.skipped_overdamped, m.from_scene, m.from_mesh, m.from_proxy,
               m.excitations, m.resonators.resonators, static_cast<double>(m.resonators.mode_samples));
+  for (const auto& [id, radius_m] : modal->transfer_short_objects())
+    std::printf("clatter-synth: modal: note: object %d is silent at a listener closer than %.3g m: its proxy, scaled to its base "
+                "frequency, is larger than the object, and its multipoles hold only beyond that (docs/synth.md \"Coverage\")\n",
+                id, radius_m);
+  if (m.transfer_short)
+    std::printf("clatter-synth: modal: %zu impact-listener pairs skipped for a listener inside a scaled proxy's transfer region\n",
+                m.transfer_short);
   if (m.band_short)
     std::printf("clatter-synth: modal: warning: for %zu objects the bank's last mode, scaled, lies below the top frequency: "
                 "their modes above it are missing (a bank to a higher f_max multiple has them; docs/modal.md)\n",
@@ -122,9 +131,19 @@ int run(const Options& o) {
   const double seconds = static_cast<double>(mix.front().size()) / o.rate_hz;
   std::printf("clatter-synth: wrote %s: %zu channel(s), %.3f s at %d Hz, %s; peak %.4g Pa%s\n", o.out.c_str(), mix.size(), seconds,
               o.rate_hz, o.format.c_str(), peak, o.normalize ? fmt::format(" (normalized by {:.4g})", gain).c_str() : "");
-  std::printf("clatter-synth: %zu impacts (%zu of them fracture impulses) from %zu events (%zu on objects not alive then, "
-              "skipped) rendered in %.3f s\n",
-              stats.impacts, stats.fracture_impacts, scene.events.size(), stats.skipped_inactive, render_s);
+  std::printf("clatter-synth: %zu impacts (%zu of them fracture impulses, %zu sustained contacts) from %zu events (%zu on "
+              "objects not alive then, skipped) rendered in %.3f s\n",
+              stats.impacts, stats.fracture_impacts, stats.sustained_impacts, scene.events.size(), stats.skipped_inactive, render_s);
+  for (std::size_t s = 0; s < sources.size(); ++s) {
+    const auto& lines = stats.coverage[s];
+    if (lines.empty()) {
+      std::printf("clatter-synth: %s: every object within the bank's coverage\n", sources[s]->name().c_str());
+      continue;
+    }
+    std::printf("clatter-synth: %s: note: %zu of %zu objects outside the bank's coverage (docs/synth.md \"Coverage\"):\n",
+                sources[s]->name().c_str(), lines.size(), scene.objects.size());
+    for (const auto& line : lines) std::printf("clatter-synth: %s:   %s\n", sources[s]->name().c_str(), line.c_str());
+  }
   print_summary(sources, stems, modal, o.modal);
   if (ground) print_ground_summary(*ground, scene.listeners_m.size());
   return kExitOk;

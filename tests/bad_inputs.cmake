@@ -83,6 +83,8 @@ foreach(case
     "base_frequency|base_frequency.json: objects[0].base_frequency_hz: 0: must be > 0"
     "half_damping|half_damping.json: materials.rock: give both rayleigh_alpha_1_s and rayleigh_beta_s, or neither"
     "fracture_time|fracture_time.json: events[0]: missing key 'contact_time_s'"
+    "contact_both|contact_both.json: events[0]: a contact event needs exactly one of normal_speed_m_s and contact_time_s"
+    "sustained_time|sustained_time.json: events[0]: contact_time_s 0 s: must be > 0"
     "density|density.json: materials.concrete.density_kg_m3: -5: must be > 0")
   string(REPLACE "|" ";" parts "${case}")
   list(POP_FRONT parts file)

@@ -5,7 +5,8 @@
 #   kernels/ uses no MPI, HDF5, config or logging code; mpi/ knows no physics, HDF5 or config;
 #   core/ depends on nothing of Clatter's; io/ knows no physics and no MPI layer, and its serial
 #   build no MPI at all; synth/ is serial (no MPI); model/ is plain data (std only); no binary links both builds of io;
-#   petsc/ knows no physics, HDF5 or config, and only jobs/ (and tests/) use it or PETSc.
+#   petsc/ knows no physics, HDF5 or config, and only jobs/ (and tests/) use it or PETSc;
+#   sim/ (clatter-sim) is serial and alone uses Bullet and voro++; the synthesizer knows neither.
 # Usage: check_layers.sh [BUILD/link_libraries.txt]
 set -u
 links_file=${1:-}
@@ -30,6 +31,12 @@ forbid io 'kernels/|jobs/|mpi/' "must not depend on physics or the MPI layer"
 hits=$(grep -nE '^\s*#\s*include\s*[<"]("|[A-Za-z0-9_]+[/.])' -r model | grep -vE ':\s*#\s*include\s*"model/' || true)
 if [[ -n $hits ]]; then echo "FAIL: model must be plain data: the standard library only:"; echo "$hits"; status=1; fi
 forbid synth 'mpi\.h|mpi/|jobs/|io/h5_parallel' "must stay serial"
+# The synthesizer reads scenes; the simulator that makes them (sim/) is a separate program.
+forbid synth 'sim/|bt[A-Z]|Bullet|LinearMath|voro\+\+' "must stay free of the rigid-body simulator"
+forbid sim 'mpi\.h|mpi/|jobs/|synth/|io/h5_parallel|petsc|slepc' "must stay serial and apart from the synthesizer"
+for dir in core model mpi io kernels synth jobs petsc; do
+  forbid $dir 'bt[A-Z]|BulletCollision|BulletDynamics|LinearMath|voro\+\+' "must not use Bullet or voro++ (only sim/ may)"
+done
 forbid jobs 'synth/' "must not depend on the synthesizer (the bank's data model is in model/)"
 # Only io/h5_parallel.* (built into clatter_io_mpi alone) may see MPI inside io/.
 hits=$(grep -nE '^\s*#\s*include\s*<mpi\.h>' -r io --include='*.hpp' --include='*.cpp' | grep -v '^io/h5_parallel\.' || true)
@@ -88,6 +95,11 @@ if [[ -n $links_file ]]; then
   forbid_link clatter_synth "$mpi" "must stay serial"
   forbid_link clatter-synth "$mpi" "must stay serial"
   forbid_link clatter_jobs "clatter_synth" "must not depend on the synthesizer"
+  for t in clatter_synth clatter-synth clatter_jobs clatter_kernels clatter_io; do
+    forbid_link $t "clatter_sim|PkgConfig::BULLET|clatter_voro" "must not link the rigid-body simulator (only sim/ may)"
+  done
+  forbid_link clatter_sim "$mpi|$petsc|clatter_synth|clatter_jobs" "must stay serial and apart from the synthesizer"
+  forbid_link clatter-sim "$mpi|$petsc|clatter_synth|clatter_jobs" "must stay serial and apart from the synthesizer"
   # The specs and the config are checked by the fuzz harnesses, which link neither MPI nor HDF5.
   forbid_link clatter_specs "$mpi|$hdf5|CLI11::CLI11|spdlog::spdlog" "must stay free of MPI, HDF5 and the command line"
   forbid_link clatter_config "$mpi|$hdf5|clatter_kernels" "must stay free of MPI, HDF5 and physics"

@@ -28,7 +28,7 @@ done
 
 # What the commands promise, checked on what they left (independent of the code: h5py and text).
 need() { [[ -s $1 ]] || fail "$1 was not made"; }
-for f in out/field.h5 out/big.h5 out/raw.h5 out/bank.h5 my.toml pan.sbatch out/debris.wav out/rings.wav out/rings.pan.wav out/rings.modal.wav; do need "$f"; done
+for f in out/field.h5 out/big.h5 out/raw.h5 out/bank.h5 my.toml pan.sbatch out/debris.wav out/rings.wav out/rings.pan.wav out/rings.modal.wav out/plate.json out/plate.wav; do need "$f"; done
 "$python" - <<'PY' || fail "the HDF5 outputs are not what the README says"
 import h5py
 for path, fmt in [("out/field.h5", "clatter-field"), ("out/big.h5", "clatter-field"),
@@ -49,5 +49,6 @@ grep -q "66 tasks\|66 proxies\|396" cmd*.out cmd*.err pan.sbatch || fail "plan d
 grep -q "#SBATCH" pan.sbatch || fail "pan.sbatch is not a batch script"
 probe=$(grep -l '^t_s,p_Pa' cmd*.out | head -1)
 [[ -n $probe && $(wc -l <"$probe") -gt 100 ]] || fail "probe printed no CSV series"
+grep -q "outside the bank.s coverage" cmd*.out || fail "the plate render did not list the objects the demo banks do not cover"
 [[ $status -eq 0 ]] && echo "README commands: all ${#commands[@]} ran as written"
 exit $status

@@ -1,0 +1,389 @@
+#include "sim/simulate.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+
+#include "core/errors.hpp"
+#include "core/rotation.hpp"
+#include "core/stage_log.hpp"
+#include "io/materials.hpp"
+#include "io/mesh.hpp"
+#include "kernels/fem/lowest_mode.hpp"
+#include "kernels/mass_properties.hpp"
+#include "kernels/rigid_body.hpp"
+#include "sim/impacts.hpp"
+#include "sim/rigid_transform.hpp"
+#include "sim/voronoi.hpp"
+#include "sim/world.hpp"
+
+namespace clatter::sim {
+namespace {
+
+using io::RealList;
+using io::StringList;
+
+// A solid's mass properties and its principal frame: the body frame of Bullet and of the scene.
+struct Solid {
+  double mass_kg = 0, volume_m3 = 0;
+  Vec3 moments_kg_m2{};
+  RigidTransform principal;  // body (principal, centred) frame -> the coordinates the mesh was given in
+  std::vector<Vec3> hull_m;  // the mesh's vertices in the body frame
+  std::vector<Vec3> vertices_m;  // the mesh as given, for its lowest mode
+  std::vector<std::array<int, 3>> triangles;
+};
+
+Solid solid_of(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles, double density,
+               const std::string& what) {
+  const kernels::MeshMassProperties mp = kernels::mesh_mass_properties(vertices, triangles);
+  if (!(mp.volume_m3 > 0)) throw InputError(fmt::format("{}: encloses no volume ({} m^3)", what, mp.volume_m3));
+  Solid s;
+  s.volume_m3 = mp.volume_m3;
+  s.mass_kg = density * mp.volume_m3;
+  kernels::Mat3 inertia{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) inertia[i][j] = density * mp.inertia_per_density_m5[i][j];
+  const kernels::ProxyFit fit = kernels::fit_proxy(inertia, s.mass_kg, s.volume_m3);
+  s.moments_kg_m2 = fit.moments_kg_m2;
+  s.principal = {quaternion_from_columns(fit.axes), mp.centroid_m};
+  const RigidTransform to_body = s.principal.inverse();
+  for (const Vec3& v : vertices) s.hull_m.push_back(to_body.apply(v));
+  s.vertices_m = vertices;
+  s.triangles = triangles;
+  return s;
+}
+
+io::SceneMaterial scene_material(const model::Material& m, bool with_density) {
+  io::SceneMaterial s;
+  s.youngs_modulus_pa = m.youngs_pa;
+  s.poisson_ratio = m.poisson;
+  s.has_damping = true;
+  s.rayleigh_alpha_1_s = m.rayleigh_alpha_1_s;
+  s.rayleigh_beta_s = m.rayleigh_beta_s;
+  if (with_density) s.density_kg_m3 = m.rho_kg_m3;
+  return s;
+}
+
+Vec3 point(const RealList& list, std::size_t i = 0) { return {list[3 * i], list[3 * i + 1], list[3 * i + 2]}; }
+Vec3 add(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 scale(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 cross(const Vec3& a, const Vec3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+
+// A body of the run: its solid, where it sits, and its scene object.
+struct Body {
+  Solid solid;
+  io::SceneObject object;
+};
+
+class Simulation {
+ public:
+  Simulation(const io::Config& c, const std::string& config_path) : c_(c), config_path_(config_path) {
+    options_.dt_s = c.real("sim.dt_s");
+    options_.gravity_m_s2 = c.real("sim.gravity_m_s2");
+    options_.solver_iterations = static_cast<int>(c.integer("sim.solver_iterations"));
+    options_.ground_friction = c.real("ground.friction");
+    options_.ground_restitution = c.real("ground.restitution");
+    const auto& table = io::builtin_materials();
+    body_material_ = io::find_material(table, c.string("bodies.material"), "bodies.material");
+    ground_material_ = io::find_material(table, c.string("ground.material"), "ground.material");
+    scene_.materials[body_material_.name] = scene_material(body_material_, false);
+    scene_.materials[ground_material_.name] = scene_material(ground_material_, true);
+    scene_.ground_material = ground_material_.name;
+    const RealList& listeners = c.reals("listeners.positions_m");
+    if (listeners.empty()) throw InputError("listeners.positions_m: []: give at least one listener");
+    for (std::size_t i = 0; i < listeners.size() / 3; ++i) scene_.listeners_m.push_back(point(listeners, i));
+    scene_.duration_s = c.real("sim.duration_s");
+  }
+
+  io::Scene run(SimStats* stats, const Progress& progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    World world(options_);
+    {
+      Stage stage("bodies");
+      add_meshes(world);
+      add_plate(world);
+      add_pile(world);
+    }
+    if (world.bodies() == 0) throw InputError("nothing to simulate: give meshes.files, plate.pieces or pile.pieces");
+    ImpactRecorder recorder(options_.dt_s, {c_.real("record.impact_window_s"), c_.real("record.sustain_window_s"),
+                                            c_.real("record.quiet_s"), c_.real("record.min_speed_m_s"),
+                                            c_.real("record.merge_distance_m")});
+    const auto steps = static_cast<std::size_t>(std::llround(scene_.duration_s / options_.dt_s));
+    SimStats s;
+    Stage steps_stage("steps");
+    for (std::size_t n = 0; n < steps; ++n) {
+      {
+        Stage stage("bullet");  // ~1e4 calls of ~1 ms: the stage's own cost is negligible
+        world.step();
+      }
+      Stage stage("events");
+      recorder.add_step(static_cast<double>(n) * options_.dt_s, world.contacts());
+      s.contact_samples += world.contacts().size();
+      if (plate_id_ && world.has_body(plate_id_)) maybe_fracture(world, recorder, static_cast<double>(n + 1) * options_.dt_s, s);
+      if (progress && (n + 1) % std::max<std::size_t>(1, steps / 10) == 0) progress(n + 1, steps);
+    }
+    scene_.events = recorder.finish();
+    for (auto& [id, b] : bodies_) {
+      scene_.objects.push_back(b.object);
+      if (world.has_body(id)) s.final_states[id] = world.state(id);
+    }
+    s.steps = steps;
+    s.bodies = bodies_.size();
+    s.impacts = recorder.impacts();
+    s.sustained = recorder.sustained();
+    s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (stats) *stats = s;
+    return scene_;
+  }
+
+ private:
+  // Adds a body whose mesh coordinates map to the world by `placement`, moving with v, w.
+  void add_body(World& world, int id, Solid solid, const RigidTransform& placement, const Vec3& v, const Vec3& w, double created_s,
+           double gap_m) {
+    BodySpec spec;
+    spec.id = id;
+    spec.mass_kg = solid.mass_kg;
+    spec.principal_moments_kg_m2 = solid.moments_kg_m2;
+    spec.hull_m = solid.hull_m;
+    spec.margin_m = c_.real("bodies.margin_m");
+    spec.gap_m = gap_m;
+    spec.friction = c_.real("bodies.friction");
+    spec.restitution = c_.real("bodies.restitution");
+    const RigidTransform body = placement.compose(solid.principal);
+    spec.initial.pose = {body.translation_m, body.rotation};
+    spec.initial.velocity_m_s = v;
+    spec.initial.angular_velocity_rad_s = w;
+    world.add_body(spec);
+    io::SceneObject o;
+    o.id = id;
+    o.mass_kg = solid.mass_kg;
+    o.volume_m3 = solid.volume_m3;
+    for (int i = 0; i < 3; ++i) o.inertia_kg_m2[i][i] = solid.moments_kg_m2[i];
+    o.material = body_material_.name;
+    o.created_s = created_s;
+    // The simulator knows each piece's shape, so it gives clatter-synth the piece's own lowest
+    // frequency (FEM, kernels/fem/lowest_mode.hpp), to which the modal proxy is scaled (003 5.4).
+    if (c_.boolean("bodies.base_frequency")) {
+      Stage stage("base frequency (FEM)");
+      o.base_frequency_hz = kernels::fem::lowest_free_mode(solid.vertices_m, solid.triangles, body_material_.youngs_pa,
+                                                           body_material_.poisson, body_material_.rho_kg_m3)
+                                .frequency_hz;
+    }
+    bodies_[id] = {std::move(solid), o};
+  }
+
+  void add_meshes(World& world) {
+    const StringList& files = c_.strings("meshes.files");
+    const RealList& at = c_.reals("meshes.positions_m");
+    const RealList& v = c_.reals("meshes.velocities_m_s");
+    if (at.size() != 3 * files.size())
+      throw InputError(fmt::format("meshes.positions_m: {} points for {} meshes.files: give one per file", at.size() / 3, files.size()));
+    if (!v.empty() && v.size() != at.size())
+      throw InputError(fmt::format("meshes.velocities_m_s: {} velocities for {} meshes.files: give one per file, or none",
+                                   v.size() / 3, files.size()));
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      std::filesystem::path file = files[i];
+      if (file.is_relative() && !config_path_.empty()) file = std::filesystem::path(config_path_).parent_path() / file;
+      const io::TriangleMesh mesh = io::read_obj(file.string());
+      Solid s = solid_of(mesh.vertices_m, mesh.triangles, body_material_.rho_kg_m3, file.string());
+      add_body(world, next_id_++, std::move(s), {{1, 0, 0, 0}, point(at, i)}, v.empty() ? Vec3{} : point(v, i), {}, 0, 0);
+    }
+  }
+
+  // The plate's outline: a regular polygon of `sides` around its circumradius, `thickness` thick,
+  // centred on the origin of its own coordinates with its faces normal to z.
+  void add_plate(World& world) {
+    const auto pieces = static_cast<std::size_t>(c_.integer("plate.pieces"));
+    if (!pieces) return;
+    const double r = c_.real("plate.radius_m"), t = c_.real("plate.thickness_m");
+    const auto sides = static_cast<int>(c_.integer("plate.sides"));
+    const double apothem = r * std::cos(std::numbers::pi / sides);
+    std::vector<HalfSpace> planes;
+    for (int k = 0; k < sides; ++k) {
+      const double a = 2 * std::numbers::pi * (k + 0.5) / sides;
+      planes.push_back({{std::cos(a), std::sin(a), 0}, apothem});
+    }
+    const Vec3 lo{-r, -r, -t / 2}, hi{r, r, t / 2};
+    // Seeds uniform over the disc inside the outline (in the mid-plane: the pieces are prisms
+    // through the thickness, as a plate breaks).
+    Uniform u(static_cast<std::uint64_t>(c_.integer("sim.seed")));
+    std::vector<Vec3> seeds;
+    while (seeds.size() < pieces) {
+      const Vec3 p{(2 * u() - 1) * apothem, (2 * u() - 1) * apothem, 0};
+      if (p[0] * p[0] + p[1] * p[1] < 0.95 * 0.95 * apothem * apothem) seeds.push_back(p);
+    }
+    Piece whole;
+    {
+      Stage stage("voronoi");
+      plate_pieces_ = voronoi_pieces(lo, hi, planes, seeds);
+      whole = voronoi_pieces(lo, hi, planes, {{0, 0, 0}}).front();
+    }
+    const double tilt = c_.real("plate.tilt_deg") * std::numbers::pi / 180;
+    const RigidTransform placement{{std::cos(tilt / 2), std::sin(tilt / 2), 0, 0}, vector3("plate.position_m")};
+    plate_id_ = next_id_++;
+    add_body(world, plate_id_, solid_of(whole.vertices_m, whole.triangles, body_material_.rho_kg_m3, "plate"), placement,
+        vector3("plate.velocity_m_s"), {}, 0, 0);
+  }
+
+  // At the plate's first contact with an impulse: it is replaced by its pieces, each moving as the
+  // plate did at its place, plus a push of plate.kick_m_s away from the impact point in the plate's
+  // plane (the fracture impulse of 003 section 3.3, recorded as a fracture event).
+  void maybe_fracture(World& world, ImpactRecorder& recorder, double t_s, SimStats& s) {
+    Vec3 at{};
+    double weight = 0;
+    for (const ContactSample& c : world.contacts())
+      if (c.a == plate_id_ || c.b == plate_id_) {
+        const double w = std::sqrt(dot(c.impulse_n_s, c.impulse_n_s));
+        at = add(at, scale(c.point_m, w));
+        weight += w;
+      }
+    if (!(weight > 0)) return;
+    at = scale(at, 1 / weight);
+    const BodyState plate = world.state(plate_id_);
+    world.remove_body(plate_id_);
+    Body& whole = bodies_.at(plate_id_);
+    whole.object.destroyed_s = t_s;
+    s.fracture_s = t_s;
+    // Plate coordinates -> world, now.
+    const RigidTransform placement = RigidTransform{plate.pose.orientation_wxyz, plate.pose.position_m}.compose(whole.solid.principal.inverse());
+    const Vec3 normal = rotate(placement.rotation, {0, 0, 1});
+    const double kick = c_.real("plate.kick_m_s"), gap = c_.real("plate.gap_m");
+    for (std::size_t i = 0; i < plate_pieces_.size(); ++i) {
+      const Piece& p = plate_pieces_[i];
+      Solid solid = solid_of(p.vertices_m, p.triangles, body_material_.rho_kg_m3, fmt::format("plate piece {}", i));
+      const Vec3 centre = placement.apply(solid.principal.translation_m);
+      Vec3 away = sub(centre, at);
+      away = sub(away, scale(normal, dot(away, normal)));
+      const double len = std::sqrt(dot(away, away));
+      const Vec3 push = len > 0 ? scale(away, kick / len) : Vec3{};
+      const Vec3 v = add(add(plate.velocity_m_s, cross(plate.angular_velocity_rad_s, sub(centre, plate.pose.position_m))), push);
+      const int id = next_id_++;
+      const double mass = solid.mass_kg;
+      add_body(world, id, std::move(solid), placement, v, plate.angular_velocity_rad_s, t_s, gap);
+      if (len > 0 && kick > 0) {
+        io::SceneEvent e;
+        e.t_s = t_s;
+        e.a = id;
+        e.fracture = true;
+        e.contact_time_s = c_.real("plate.fracture_time_s");
+        e.point_m = placement.apply(p.fracture_centroid_m);
+        e.impulse_n_s = scale(push, mass);
+        e.pose_a = world.state(id).pose;
+        recorder.add_event(e);
+        ++s.fracture_events;
+      }
+    }
+  }
+
+  void add_pile(World& world) {
+    const auto pieces = static_cast<std::size_t>(c_.integer("pile.pieces"));
+    if (!pieces) return;
+    const Vec3 size = vector3("pile.size_m"), centre = vector3("pile.position_m");
+    if (!(size[0] > 0 && size[1] > 0 && size[2] > 0))
+      throw InputError(fmt::format("pile.size_m: [{}, {}, {}]: every size must be > 0", size[0], size[1], size[2]));
+    const Vec3 lo = sub(centre, scale(size, 0.5)), hi = add(centre, scale(size, 0.5));
+    Uniform u(static_cast<std::uint64_t>(c_.integer("sim.seed")));
+    std::vector<Vec3> seeds;
+    for (std::size_t i = 0; i < pieces; ++i) seeds.push_back({lo[0] + u() * size[0], lo[1] + u() * size[1], lo[2] + u() * size[2]});
+    const Vec3 v0 = vector3("pile.velocity_m_s");
+    const double shear = c_.real("pile.shear_1_s"), gap = c_.real("pile.gap_m");
+    std::vector<Piece> rocks;
+    {
+      Stage stage("voronoi");
+      rocks = voronoi_pieces(lo, hi, {}, seeds);
+    }
+    std::size_t i = 0;
+    for (const Piece& p : rocks) {
+      Solid solid = solid_of(p.vertices_m, p.triangles, body_material_.rho_kg_m3, fmt::format("pile piece {}", i++));
+      // The block slides as a sheared layer: the higher a rock, the faster it moves along x.
+      const double height = solid.principal.translation_m[2] - lo[2];
+      add_body(world, next_id_++, std::move(solid), {}, add(v0, {shear * height, 0, 0}), {}, 0, gap);
+    }
+  }
+
+  // A key that holds one vector: exactly 3 numbers.
+  Vec3 vector3(const char* key) const {
+    const RealList& v = c_.reals(key);
+    if (v.size() != 3) throw InputError(fmt::format("{}: {} numbers: expected 3 (x, y, z)", key, v.size()));
+    return {v[0], v[1], v[2]};
+  }
+
+  const io::Config& c_;
+  std::string config_path_;
+  WorldOptions options_;
+  model::Material body_material_, ground_material_;
+  io::Scene scene_;
+  std::map<int, Body> bodies_;
+  int next_id_ = 1, plate_id_ = 0;
+  std::vector<Piece> plate_pieces_;
+};
+
+}  // namespace
+
+const io::Schema& sim_schema() {
+  using io::Range;
+  static const io::Schema schema{
+      "clatter-sim: a rigid-body simulation (Bullet) -> a native Clatter scene of contact and fracture impulses; "
+      "the defaults drop a ceramic plate that shatters on concrete (scenes/plate.toml)",
+      {
+          {"sim.dt_s", 2e-4, "fixed rigid-body time step [s] (5 kHz: 003 uses 5-10 kHz for sound)", Range{0, 0.01, true}},
+          {"sim.duration_s", 1.5, "simulated time, and the scene's duration [s]", Range{0, 600, true}},
+          {"sim.gravity_m_s2", 9.81, "gravity, along -z [m/s^2]", Range{0, 1000}},
+          {"sim.solver_iterations", std::int64_t{50}, "Bullet's sequential-impulse iterations per step", Range{1, 10000}},
+          {"sim.seed", std::int64_t{1}, "seed of the Voronoi sites (plate and pile)", Range{0, 9.0e15}},
+          {"record.impact_window_s", 2e-3, "longest impact: a contact point's first event sums at most this much of its "
+           "impulse (sim/impacts.hpp, docs/synth.md) [s]", Range{0, 10, true}},
+          {"record.sustain_window_s", 0.1, "a point still pushing after its impact continues as sustained-contact events "
+           "this long [s]", Range{0, 100, true}},
+          {"record.quiet_s", 1e-3, "a point without impulse for longer than this ends its event [s]", Range{0, 10}},
+          {"record.merge_distance_m", 0.01, "contact points of one pair closer than this are one event [m]", Range{0, 10}},
+          {"record.min_speed_m_s", 0.05, "a first event approaching slower than this is a sustained contact, not an impact [m/s]",
+           Range{0, 100}},
+          {"bodies.material", std::string("ceramic"), "material of every body: a table of configs/materials.toml"},
+          {"bodies.friction", 0.5, "Coulomb friction coefficient of the bodies (Bullet multiplies the pair's)", Range{0, 10}},
+          {"bodies.restitution", 0.3, "restitution of the bodies (Bullet multiplies the pair's)", Range{0, 1}},
+          {"bodies.base_frequency", true, "compute each body's lowest free-vibration frequency from its mesh (FEM) for "
+           "the scene's base_frequency_hz"},
+          {"bodies.margin_m", 1e-3, "Bullet's collision margin [m]: hulls are shrunk by it, so surfaces stay where they are",
+           Range{0, 0.1}},
+          {"ground.material", std::string("concrete"), "material of the ground plane z = 0: a table of configs/materials.toml"},
+          {"ground.friction", 0.8, "friction coefficient of the ground", Range{0, 10}},
+          {"ground.restitution", 0.5, "restitution of the ground", Range{0, 1}},
+          {"meshes.files", io::StringList{}, "bodies from closed triangle meshes (OBJ, relative to the config; convex hulls collide)"},
+          {"meshes.positions_m", io::RealList{}, "where each mesh's coordinate origin starts [m]", {}, {}, 3},
+          {"meshes.velocities_m_s", io::RealList{}, "each mesh's starting velocity [m/s] (empty: at rest)", {}, {}, 3},
+          {"plate.pieces", std::int64_t{40}, "a plate pre-fractured into this many Voronoi pieces (0: no plate)", Range{0, 100000}},
+          {"plate.radius_m", 0.13, "the plate's outer radius (polygon circumradius) [m]", Range{0, 100, true}},
+          {"plate.thickness_m", 0.006, "its thickness [m]", Range{0, 100, true}},
+          {"plate.sides", std::int64_t{32}, "sides of its polygonal outline", Range{3, 1000}},
+          {"plate.position_m", io::RealList{0, 0, 0.5}, "its centre at the start [m]"},
+          {"plate.tilt_deg", 10.0, "its tilt about the x axis at the start [deg]", Range{-90, 90}},
+          {"plate.velocity_m_s", io::RealList{0, 0, 0}, "its starting velocity [m/s]"},
+          {"plate.kick_m_s", 0.5, "speed each piece gets away from the impact point, in the plate's plane, as it breaks [m/s]",
+           Range{0, 100}},
+          {"plate.fracture_time_s", 2e-4, "duration of each fracture impulse (the scene's contact_time_s) [s]", Range{0, 1, true}},
+          {"plate.gap_m", 2e-4, "pieces collide as if this much smaller on each side, so neighbours start apart [m]",
+           Range{0, 0.01}},
+          {"pile.pieces", std::int64_t{0}, "a block of loose Voronoi rocks of this many pieces (0: none)", Range{0, 100000}},
+          {"pile.size_m", io::RealList{0.4, 0.3, 0.25}, "the block's size along x, y, z [m]"},
+          {"pile.position_m", io::RealList{0, 0, 0.35}, "the block's centre at the start [m]"},
+          {"pile.velocity_m_s", io::RealList{1.0, 0, 0}, "the block's starting velocity [m/s]"},
+          {"pile.shear_1_s", 4.0, "extra x velocity per metre of height in the block, a sliding layer [1/s]", Range{-1000, 1000}},
+          {"pile.gap_m", 2e-3, "rocks collide as if this much smaller on each side, so neighbours start apart [m]",
+           Range{0, 0.1}},
+          {"listeners.positions_m", io::RealList{0.0, 1.2, 0.6}, "listener positions of the scene [m]", {}, {}, 3},
+      }};
+  return schema;
+}
+
+io::Scene simulate(const io::Config& config, const std::string& config_path, SimStats* stats, const Progress& progress) {
+  Simulation sim(config, config_path);
+  return sim.run(stats, progress);
+}
+
+}  // namespace clatter::sim

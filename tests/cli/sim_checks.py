@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+"""clatter-sim end to end (docs/synth.md "Scenes from a rigid-body simulator"):
+- determinism: the plate scene (scenes/plate.toml, shortened to 0.6 s: it breaks at 0.31 s) and a
+  shortened rock slide (scenes/rockslide.toml, 0.2 s), each run twice, give identical bytes;
+- the scene is what the format promises, checked here on the JSON: the plate object destroyed at
+  the fracture time and every piece created then (time-varying objects, 003 section 3.3), one
+  fracture event per piece at that time, events in time order, momentum of the fracture impulses
+  = m * kick per piece, masses summing to the plate's, the rock slide's >= 100 granite rocks;
+- the plate renders through clatter-synth with a PAN, a modal and a ground bank: exit 0, and every
+  object outside a bank's coverage is listed by id with its reason (docs/synth.md "Coverage");
+- bad input, each exit 2 with one line naming the key and value, and a scene file already at the
+  output path left untouched: an unknown material, one position for two meshes, a 2-vector, a
+  zero time step, nothing to simulate.
+Usage: sim_checks.py CLATTER_SIM CLATTER_SYNTH SOURCE_DIR PAN_BANK MODAL_BANK GROUND_BANK SCRATCH"""
+import filecmp, json, math, os, re, shutil, subprocess, sys
+
+sim, synth, src, pan_bank, modal_bank, ground_bank, scratch = sys.argv[1:8]
+shutil.rmtree(scratch, ignore_errors=True)
+os.makedirs(scratch)
+os.chdir(scratch)
+failures = []
+
+
+def check(ok, what):
+    print(("ok:   " if ok else "FAIL: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def run(*args):
+    return subprocess.run(list(args), capture_output=True, text=True)
+
+
+plate_cfg = os.path.join(src, "scenes", "plate.toml")
+rocks_cfg = os.path.join(src, "scenes", "rockslide.toml")
+# The test ground bank holds steel and soil: the plate falls on steel here.
+plate_args = [sim, "-q", "-c", plate_cfg, "--set", "sim.duration_s=0.6", "--set", "ground.material=\"steel\""]
+for name in ("a", "b"):
+    r = run(*plate_args, "-o", f"plate_{name}.json")
+    check(r.returncode == 0, f"plate run {name} exits 0 ({r.returncode}: {r.stderr.strip()[-300:]})")
+check(filecmp.cmp("plate_a.json", "plate_b.json", shallow=False), "two plate runs give identical scene bytes")
+rock_args = [sim, "-q", "-c", rocks_cfg, "--set", "sim.duration_s=0.2"]
+for name in ("a", "b"):
+    r = run(*rock_args, "-o", f"rocks_{name}.json")
+    check(r.returncode == 0, f"rock-slide run {name} exits 0 ({r.returncode}: {r.stderr.strip()[-300:]})")
+check(filecmp.cmp("rocks_a.json", "rocks_b.json", shallow=False), "two rock-slide runs give identical scene bytes")
+
+scene = json.load(open("plate_a.json"))
+objects = {o["id"]: o for o in scene["objects"]}
+plate = objects[1]
+pieces = [o for o in scene["objects"] if o["id"] != 1]
+t_break = plate["destroyed_s"]
+check(t_break is not None and 0.25 < t_break < 0.4, f"the plate (dropped from 0.5 m) breaks at its first impact, {t_break} s")
+check(len(pieces) >= 30, f"{len(pieces)} pieces (>= 30)")
+check(all(o["created_s"] == t_break for o in pieces), "every piece is created at the fracture time")
+check(abs(sum(o["mass_kg"] for o in pieces) / plate["mass_kg"] - 1) < 1e-9, "the pieces' masses sum to the plate's")
+fractures = [e for e in scene["events"] if e["b"] == "fracture"]
+check(len(fractures) == len(pieces) and all(e["t_s"] == t_break for e in fractures), "one fracture event per piece, at the break")
+kick = 0.5  # plate.kick_m_s of scenes/plate.toml
+check(all(abs(math.hypot(*e["impulse_n_s"]) / (objects[e["a"]]["mass_kg"] * kick) - 1) < 1e-9 for e in fractures),
+      "each fracture impulse is the piece's mass times the kick speed")
+times = [e["t_s"] for e in scene["events"]]
+check(times == sorted(times), "events in time order")
+plate_events = [e for e in scene["events"] if 1 in (e["a"], e["b"])]
+check(len(plate_events) >= 1 and all(e["t_s"] < t_break for e in plate_events), "the plate's own impact comes before it breaks")
+check(scene["generator"]["program"] == "clatter-sim" and scene["generator"]["time_step_s"] == 2e-4, "generator names the program and its step")
+rocks = json.load(open("rocks_a.json"))
+check(len(rocks["objects"]) >= 100 and all(o["material"] == "granite" for o in rocks["objects"]), f"{len(rocks['objects'])} granite rocks")
+check(rocks["ground_material"] == "concrete", "the rock slide lands on concrete")
+
+r = run(synth, "-i", "plate_a.json", "-b", pan_bank, "-m", modal_bank, "-g", ground_bank, "-o", "plate.wav", "--stems")
+check(r.returncode == 0 and os.path.getsize("plate.wav") > 1000, f"the plate renders with PAN, modal and ground banks ({r.returncode}: {r.stderr.strip()[-300:]})")
+for source in ("pan", "modal"):
+    m = re.search(rf"clatter-synth: {source}: note: (\d+) of (\d+) objects outside", r.stdout)
+    listed = set(int(x) for x in re.findall(rf"clatter-synth: {source}:   object (\d+): .+", r.stdout))
+    if m:
+        check(int(m.group(1)) == len(listed) and listed <= set(objects), f"{source}: the {m.group(1)} uncovered objects are each listed with a reason")
+    else:
+        check(f"clatter-synth: {source}: every object within the bank's coverage" in r.stdout, f"{source}: coverage reported")
+print(r.stdout)
+
+# Bad input: exit 2, one line naming key and value, and the file already at the output untouched.
+with open("kept.json", "w") as f:
+    f.write("a scene the user had\n")
+bad = [(["--set", "bodies.material=\"unobtainium\""], "unobtainium"),
+       (["--set", "meshes.files=[\"a.obj\", \"b.obj\"]", "--set", "meshes.positions_m=[[0, 0, 1]]"], "meshes.positions_m"),
+       (["--set", "plate.position_m=[0, 1]"], "plate.position_m"),
+       (["--set", "sim.dt_s=0"], "sim.dt_s"),
+       (["--set", "plate.pieces=0"], "nothing to simulate")]
+for extra, word in bad:
+    r = run(sim, "-c", plate_cfg, *extra, "-o", "kept.json")
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 2 and len(lines) == 1 and word in lines[0], f"{' '.join(extra)}: exit 2 naming {word} ({r.returncode}: {r.stderr.strip()})")
+    check(open("kept.json").read() == "a scene the user had\n" and not os.path.exists("kept.json.partial"), f"{word}: the existing output is untouched")
+
+if failures:
+    print(f"sim checks: {len(failures)} FAILED")
+    sys.exit(1)
+print("sim checks: all passed")
