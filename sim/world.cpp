@@ -6,7 +6,6 @@
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <LinearMath/btConvexHullComputer.h>
 #include <algorithm>
-#include <cstdint>
 #include <stdexcept>
 
 namespace clatter::sim {

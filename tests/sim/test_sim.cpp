@@ -198,5 +198,52 @@ TEST(SimImpacts, EpisodesFollowTheDocumentedRule) {
   EXPECT_NEAR(sum, total, 1e-12);
 }
 
+// The scene a simulation writes reads back as the same values (shortest round-trip numbers),
+// fracture events, sustained contacts, lifetimes and base frequencies included.
+TEST(SimScene, WrittenSceneReadsBackExactly) {
+  io::Config c(sim_schema());
+  c.set("plate.pieces=8");
+  c.set("sim.duration_s=0.45");
+  c.set("bodies.base_frequency=false");
+  const io::Scene scene = simulate(c, "");
+  const auto path = (std::filesystem::temp_directory_path() / "clatter-sim-test-roundtrip.json").string();
+  io::write_scene(scene, path, R"({"program": "test"})");
+  const io::Scene back = io::read_scene(path);
+  ASSERT_EQ(back.objects.size(), scene.objects.size());
+  ASSERT_EQ(back.events.size(), scene.events.size());
+  std::size_t fractures = 0, sustained = 0;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const auto &a = scene.objects[i], &b = back.objects[i];
+    EXPECT_EQ(a.id, b.id);
+    EXPECT_EQ(a.mass_kg, b.mass_kg);
+    EXPECT_EQ(a.volume_m3, b.volume_m3);
+    EXPECT_EQ(a.inertia_kg_m2, b.inertia_kg_m2);
+    EXPECT_EQ(a.created_s, b.created_s);
+    EXPECT_EQ(a.destroyed_s, b.destroyed_s);
+    EXPECT_EQ(a.material, b.material);
+  }
+  for (std::size_t i = 0; i < scene.events.size(); ++i) {
+    const auto &a = scene.events[i], &b = back.events[i];
+    EXPECT_EQ(a.t_s, b.t_s);
+    EXPECT_EQ(a.a, b.a);
+    EXPECT_EQ(a.b, b.b);
+    EXPECT_EQ(a.fracture, b.fracture);
+    EXPECT_EQ(a.sustained, b.sustained);
+    EXPECT_EQ(a.impulse_n_s, b.impulse_n_s);
+    EXPECT_EQ(a.point_m, b.point_m);
+    EXPECT_EQ(a.normal_speed_m_s, b.normal_speed_m_s);
+    EXPECT_EQ(a.contact_time_s, b.contact_time_s);
+    EXPECT_EQ(a.pose_a.position_m, b.pose_a.position_m);
+    EXPECT_EQ(a.pose_a.orientation_wxyz, b.pose_a.orientation_wxyz);
+    fractures += a.fracture, sustained += a.sustained;
+  }
+  EXPECT_EQ(fractures, 8u);
+  EXPECT_GT(sustained, 0u);
+  EXPECT_EQ(back.ground_material, scene.ground_material);
+  EXPECT_EQ(back.listeners_m, scene.listeners_m);
+  EXPECT_EQ(back.duration_s, scene.duration_s);
+  EXPECT_EQ(back.materials.at(scene.ground_material).density_kg_m3, scene.materials.at(scene.ground_material).density_kg_m3);
+}
+
 }  // namespace
 }  // namespace clatter::sim
