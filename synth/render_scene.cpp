@@ -99,6 +99,10 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
     const double j = std::sqrt(e.impulse_n_s[0] * e.impulse_n_s[0] + e.impulse_n_s[1] * e.impulse_n_s[1] +
                                e.impulse_n_s[2] * e.impulse_n_s[2]);
     if (!(j > 0)) continue;  // a resting contact: no sound
+    if (e.sustained && e.contact_time_s > options.max_sustained_s) {
+      ++local.skipped_sustained;
+      continue;
+    }
     const Contact contact = event_contact(scene, e, a, b, j);
     const Vec3 dir_world{e.impulse_n_s[0] / j, e.impulse_n_s[1] / j, e.impulse_n_s[2] / j};
     for (int side = 0; side < (b ? 2 : 1); ++side) {

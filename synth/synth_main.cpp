@@ -28,6 +28,7 @@ struct Options {
   std::vector<std::string> modal_banks;
   synth::ModalOptions modal;
   int rate_hz = 44100;
+  double max_sustained_s = synth::RenderOptions{}.max_sustained_s;
   bool normalize = false, stems = false;
 };
 
@@ -99,6 +100,7 @@ int run(const Options& o) {
   for (auto& s : owned) sources.push_back(s.get());
   synth::RenderOptions options;
   options.rate_hz = o.rate_hz;
+  options.max_sustained_s = o.max_sustained_s;
   synth::RenderStats stats;
   auto stems = synth::render_scene(scene, sources, options, &stats);
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -132,8 +134,9 @@ int run(const Options& o) {
   std::printf("clatter-synth: wrote %s: %zu channel(s), %.3f s at %d Hz, %s; peak %.4g Pa%s\n", o.out.c_str(), mix.size(), seconds,
               o.rate_hz, o.format.c_str(), peak, o.normalize ? fmt::format(" (normalized by {:.4g})", gain).c_str() : "");
   std::printf("clatter-synth: %zu impacts (%zu of them fracture impulses, %zu sustained contacts) from %zu events (%zu on "
-              "objects not alive then, skipped) rendered in %.3f s\n",
-              stats.impacts, stats.fracture_impacts, stats.sustained_impacts, scene.events.size(), stats.skipped_inactive, render_s);
+              "objects not alive then, %zu sustained contacts longer than %g s, skipped) rendered in %.3f s\n",
+              stats.impacts, stats.fracture_impacts, stats.sustained_impacts, scene.events.size(), stats.skipped_inactive,
+              stats.skipped_sustained, o.max_sustained_s, render_s);
   for (std::size_t s = 0; s < sources.size(); ++s) {
     const auto& lines = stats.coverage[s];
     if (lines.empty()) {
@@ -171,6 +174,10 @@ int main(int argc, char** argv) {
                                                               "own")->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("-o,--out", o.out, "output WAV")->capture_default_str();
   app.add_option("--rate", o.rate_hz, "output sample rate [Hz]")->capture_default_str();
+  app.add_option("--max-sustained-s", o.max_sustained_s, "sustained contacts (resting, sliding) longer than this are not "
+                                                          "rendered (docs/synth.md)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--format", o.format, "float (32-bit float, pascals) or pcm24")
       ->check(CLI::IsMember({"float", "pcm24"}))
       ->capture_default_str();

@@ -85,6 +85,56 @@ TEST(Synth, SingleImpulseOnASphereMatchesTheExactTranslatingSphere) {
   EXPECT_LT(err, 0.05);
 }
 
+// A sustained contact longer than max_sustained_s adds nothing and is counted; a shorter one, or
+// any with the limit raised, sounds (as a half-sine of its own length).
+TEST(Synth, LongSustainedContactsAreSkippedAndCounted) {
+  ASSERT_FALSE(bank_path.empty()) << "usage: clatter-synth-tests PAN.h5 [MODAL.h5]";
+  synth::PanSource pan(bank_path);
+  const double radius = 0.1, mass = 2600 * 4.0 / 3.0 * 3.14159265358979 * radius * radius * radius, moment = 0.4 * mass * radius * radius;
+  io::Scene scene;
+  scene.path = "sustained-scene";
+  scene.materials["rock"] = {5e10, 0.25};
+  scene.ground_material = "rock";
+  io::SceneObject sphere;
+  sphere.id = 1;
+  sphere.mass_kg = mass;
+  sphere.volume_m3 = mass / 2600;
+  sphere.inertia_kg_m2 = {{{moment, 0, 0}, {0, moment, 0}, {0, 0, moment}}};
+  sphere.material = "rock";
+  scene.objects.push_back(sphere);
+  io::SceneEvent impact;
+  impact.t_s = 0.002;
+  impact.a = 1;
+  impact.pose_a.position_m = {0, 0, radius};
+  impact.point_m = {0, 0, 0};
+  impact.impulse_n_s = {0, 0, 0.05};
+  impact.normal_speed_m_s = 1.0;
+  impact.where = "sustained-scene: events[0]";
+  io::SceneEvent resting = impact;
+  resting.t_s = 0.004;
+  resting.normal_speed_m_s = 0;
+  resting.sustained = true;
+  resting.contact_time_s = 0.05;
+  resting.impulse_n_s = {0, 0, mass * 9.81 * resting.contact_time_s};
+  resting.where = "sustained-scene: events[1]";
+  scene.listeners_m.push_back({0.6, 0.5, 0.7});
+  scene.duration_s = 0.08;
+  scene.events = {impact};
+  const auto alone = synth::render_scene(scene, {&pan}, {});
+  scene.events = {impact, resting};
+  synth::RenderStats stats;
+  const auto skipped = synth::render_scene(scene, {&pan}, {}, &stats);
+  EXPECT_EQ(skipped, alone) << "a 50 ms sustained contact is skipped at the default 10 ms limit";
+  EXPECT_EQ(stats.skipped_sustained, 1u);
+  EXPECT_EQ(stats.impacts, 1u);
+  synth::RenderOptions all;
+  all.max_sustained_s = 1.0;
+  const auto rendered = synth::render_scene(scene, {&pan}, all, &stats);
+  EXPECT_NE(rendered, alone);
+  EXPECT_EQ(stats.skipped_sustained, 0u);
+  EXPECT_EQ(stats.sustained_impacts, 1u);
+}
+
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
   if (argc > 1) test::pan_bank_path = argv[1];
