@@ -121,7 +121,7 @@ class Simulation {
         Stage stage("bullet");  // ~1e4 calls of ~1 ms: the stage's own cost is negligible
         world.step();
       }
-      Stage stage("events");
+      Stage stage("events and fracture");
       recorder.add_step(static_cast<double>(n) * options_.dt_s, world.contacts());
       s.contact_samples += world.contacts().size();
       if (plate_id_ && world.has_body(plate_id_)) maybe_fracture(world, recorder, static_cast<double>(n + 1) * options_.dt_s, s);
@@ -133,7 +133,6 @@ class Simulation {
       if (world.has_body(id)) s.final_states[id] = world.state(id);
     }
     s.steps = steps;
-    s.bodies = bodies_.size();
     s.impacts = recorder.impacts();
     s.sustained = recorder.sustained();
     s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -143,8 +142,8 @@ class Simulation {
 
  private:
   // Adds a body whose mesh coordinates map to the world by `placement`, moving with v, w.
-  void add_body(World& world, int id, Solid solid, const RigidTransform& placement, const Vec3& v, const Vec3& w, double created_s,
-           double gap_m) {
+  void add_body(World& world, int id, Solid solid, const RigidTransform& placement, const Vec3& v, const Vec3& w,
+                double created_s, double gap_m) {
     BodySpec spec;
     spec.id = id;
     spec.mass_kg = solid.mass_kg;
@@ -227,7 +226,7 @@ class Simulation {
     const RigidTransform placement{{std::cos(tilt / 2), std::sin(tilt / 2), 0, 0}, vector3("plate.position_m")};
     plate_id_ = next_id_++;
     add_body(world, plate_id_, solid_of(whole.vertices_m, whole.triangles, body_material_.rho_kg_m3, "plate"), placement,
-        vector3("plate.velocity_m_s"), {}, 0, 0);
+             vector3("plate.velocity_m_s"), {}, 0, 0);
   }
 
   // At the plate's first contact with an impulse: it is replaced by its pieces, each moving as the

@@ -15,7 +15,7 @@ namespace clatter::sim {
 const io::Schema& sim_schema();
 
 struct SimStats {
-  std::size_t steps = 0, bodies = 0, contact_samples = 0;
+  std::size_t steps = 0, contact_samples = 0;
   std::size_t impacts = 0, sustained = 0, fracture_events = 0;
   double fracture_s = -1;  // when the plate broke (-1: it did not)
   double wall_s = 0;
