@@ -26,6 +26,24 @@ namespace {
 
 const std::string& bank_path = test::pan_bank_path;
 
+// A scene holding one solid rock sphere (id 1, rho 2600 kg/m^3, E 50 GPa) and no events yet.
+io::Scene one_sphere_scene(const std::string& path, double radius_m) {
+  const double pi = 3.14159265358979323846, volume = 4.0 / 3.0 * pi * radius_m * radius_m * radius_m, mass = 2600 * volume;
+  const double moment = 0.4 * mass * radius_m * radius_m;
+  io::Scene scene;
+  scene.path = path;
+  scene.materials["rock"] = {5e10, 0.25};
+  scene.ground_material = "rock";
+  io::SceneObject sphere;
+  sphere.id = 1;
+  sphere.mass_kg = mass;
+  sphere.volume_m3 = volume;
+  sphere.inertia_kg_m2 = {{{moment, 0, 0}, {0, moment, 0}, {0, 0, moment}}};
+  sphere.material = "rock";
+  scene.objects.push_back(sphere);
+  return scene;
+}
+
 }  // namespace
 
 TEST(Synth, SingleImpulseOnASphereMatchesTheExactTranslatingSphere) {
@@ -39,19 +57,9 @@ TEST(Synth, SingleImpulseOnASphereMatchesTheExactTranslatingSphere) {
   synth::PanSource pan(bank_path);
   const model::PanBankHeader header = io::read_pan_bank(bank_path).header;
 
-  const double radius = 0.1, rho_rock = 2600, pi = 3.14159265358979323846;
-  const double volume = 4.0 / 3.0 * pi * radius * radius * radius, mass = rho_rock * volume, moment = 0.4 * mass * radius * radius;
-  io::Scene scene;
-  scene.path = "sphere-scene";
-  scene.materials["rock"] = {5e10, 0.25};
-  scene.ground_material = "rock";
-  io::SceneObject sphere;
-  sphere.id = 1;
-  sphere.mass_kg = mass;
-  sphere.volume_m3 = volume;
-  sphere.inertia_kg_m2 = {{{moment, 0, 0}, {0, moment, 0}, {0, 0, moment}}};
-  sphere.material = "rock";
-  scene.objects.push_back(sphere);
+  const double radius = 0.1;
+  io::Scene scene = one_sphere_scene("sphere-scene", radius);
+  const double mass = scene.objects.front().mass_kg;
   io::SceneEvent e;
   e.t_s = 0.002;
   e.a = 1;
@@ -90,18 +98,9 @@ TEST(Synth, SingleImpulseOnASphereMatchesTheExactTranslatingSphere) {
 TEST(Synth, LongSustainedContactsAreSkippedAndCounted) {
   ASSERT_FALSE(bank_path.empty()) << "usage: clatter-synth-tests PAN.h5 [MODAL.h5]";
   synth::PanSource pan(bank_path);
-  const double radius = 0.1, mass = 2600 * 4.0 / 3.0 * 3.14159265358979 * radius * radius * radius, moment = 0.4 * mass * radius * radius;
-  io::Scene scene;
-  scene.path = "sustained-scene";
-  scene.materials["rock"] = {5e10, 0.25};
-  scene.ground_material = "rock";
-  io::SceneObject sphere;
-  sphere.id = 1;
-  sphere.mass_kg = mass;
-  sphere.volume_m3 = mass / 2600;
-  sphere.inertia_kg_m2 = {{{moment, 0, 0}, {0, moment, 0}, {0, 0, moment}}};
-  sphere.material = "rock";
-  scene.objects.push_back(sphere);
+  const double radius = 0.1;
+  io::Scene scene = one_sphere_scene("sustained-scene", radius);
+  const double mass = scene.objects.front().mass_kg;
   io::SceneEvent impact;
   impact.t_s = 0.002;
   impact.a = 1;
