@@ -10,9 +10,6 @@ using Quaternion = std::array<double, 4>;  // w, x, y, z
 
 // v' = v + 2w (u x v) + 2 u x (u x v), u = (x, y, z).
 inline Vec3 rotate(const Quaternion& q, const Vec3& v) {
-  auto cross = [](const Vec3& a, const Vec3& b) {
-    return Vec3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  };
   const Vec3 u{q[1], q[2], q[3]};
   const Vec3 t = cross(u, v), t2 = cross(u, t);
   return {v[0] + 2 * (q[0] * t[0] + t2[0]), v[1] + 2 * (q[0] * t[1] + t2[1]), v[2] + 2 * (q[0] * t[2] + t2[2])};

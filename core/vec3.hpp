@@ -1,9 +1,18 @@
 #pragma once
-// The one 3-vector of doubles every layer passes around (positions, directions, moments).
+// The one 3-vector of doubles every layer passes around (positions, directions, moments), and the
+// few operations on it that several layers need.
 #include <array>
 
 namespace clatter {
 
 using Vec3 = std::array<double, 3>;
+
+inline Vec3 add(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline Vec3 scale(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
 
 }  // namespace clatter

@@ -1,6 +1,7 @@
 #include "sim/impacts.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 
 namespace clatter::sim {
@@ -23,8 +24,9 @@ void ImpactRecorder::close(Episode& e) {
 
 void ImpactRecorder::add_step(double t_s, const std::vector<ContactSample>& contacts) {
   const long long step = std::llround(t_s / dt_s_);
-  // Rule 1: episodes without impulse for longer than quiet_s end.
-  for (auto& [pair, episodes] : open_)
+  // Rule 1: episodes without impulse for longer than quiet_s end; pairs left without any go.
+  for (auto pair = open_.begin(); pair != open_.end();) {
+    auto& episodes = pair->second;
     for (auto it = episodes.begin(); it != episodes.end();) {
       if (static_cast<double>(step - it->last_step - 1) * dt_s_ <= rules_.quiet_s * (1 + 1e-9)) {
         ++it;
@@ -33,6 +35,8 @@ void ImpactRecorder::add_step(double t_s, const std::vector<ContactSample>& cont
       close(*it);
       it = episodes.erase(it);
     }
+    pair = episodes.empty() ? open_.erase(pair) : std::next(pair);
+  }
   for (const ContactSample& c : contacts) {
     auto& episodes = open_[{c.a, c.b}];
     // The nearest open episode of the pair, if near enough (its latest point).

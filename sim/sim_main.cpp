@@ -43,11 +43,11 @@ void simulate_and_write(const Options& o, const io::Config& config) {
     std::fflush(stdout);
   };
   const io::Scene scene = sim::simulate(config, o.config_path, &stats, progress);
-  const std::string generator = fmt::format(R"({{"program": "clatter-sim", "version": {}, "time_step_s": {}, "config": {}}})",
-                                            nlohmann::json(io::version_text("clatter-sim")).dump(), dt, nlohmann::json(config.to_toml()).dump());
+  const nlohmann::json generator = {
+      {"program", "clatter-sim"}, {"version", io::version_text("clatter-sim")}, {"time_step_s", dt}, {"config", config.to_toml()}};
   {
     Stage stage("write");
-    io::write_scene(scene, o.out, generator);
+    io::write_scene(scene, o.out, generator.dump());
   }
   std::printf("clatter-sim: wrote %s: %zu objects (%s), %zu events: %zu impacts, %zu sustained contacts, %zu fracture impulses "
               "(from %zu contact-point steps); %zu steps in %.2f s (%.3g steps/s)\n",

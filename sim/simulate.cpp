@@ -26,20 +26,24 @@ namespace {
 using io::RealList;
 using io::StringList;
 
-// A solid's mass properties and its principal frame: the body frame of Bullet and of the scene.
+// A solid's mass properties, its principal frame (the body frame of Bullet and of the scene) and,
+// when asked for, its lowest free-vibration frequency.
 struct Solid {
   double mass_kg = 0, volume_m3 = 0;
   Vec3 moments_kg_m2{};
   RigidTransform principal;  // body (principal, centred) frame -> the coordinates the mesh was given in
   std::vector<Vec3> hull_m;  // the mesh's vertices in the body frame
-  std::vector<Vec3> vertices_m;  // the mesh as given, for its lowest mode
-  std::vector<std::array<int, 3>> triangles;
+  double base_frequency_hz = 0;  // 0: not computed
 };
 
-Solid solid_of(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles, double density,
-               const std::string& what) {
+// The uniform solid of `material` a closed mesh bounds. with_base_frequency: the simulator knows
+// each piece's shape, so it gives clatter-synth the piece's own lowest frequency (FEM,
+// kernels/fem/lowest_mode.hpp), to which the modal proxy is scaled (003 section 5.4).
+Solid solid_of(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles, const model::Material& material,
+               bool with_base_frequency, const std::string& what) {
   const kernels::MeshMassProperties mp = kernels::mesh_mass_properties(vertices, triangles);
   if (!(mp.volume_m3 > 0)) throw InputError(fmt::format("{}: encloses no volume ({} m^3)", what, mp.volume_m3));
+  const double density = material.rho_kg_m3;
   Solid s;
   s.volume_m3 = mp.volume_m3;
   s.mass_kg = density * mp.volume_m3;
@@ -51,8 +55,11 @@ Solid solid_of(const std::vector<Vec3>& vertices, const std::vector<std::array<i
   s.principal = {quaternion_from_columns(fit.axes), mp.centroid_m};
   const RigidTransform to_body = s.principal.inverse();
   for (const Vec3& v : vertices) s.hull_m.push_back(to_body.apply(v));
-  s.vertices_m = vertices;
-  s.triangles = triangles;
+  if (with_base_frequency) {
+    Stage stage("base frequency (FEM)");
+    s.base_frequency_hz =
+        kernels::fem::lowest_free_mode(vertices, triangles, material.youngs_pa, material.poisson, material.rho_kg_m3).frequency_hz;
+  }
   return s;
 }
 
@@ -68,17 +75,6 @@ io::SceneMaterial scene_material(const model::Material& m, bool with_density) {
 }
 
 Vec3 point(const RealList& list, std::size_t i = 0) { return {list[3 * i], list[3 * i + 1], list[3 * i + 2]}; }
-Vec3 add(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 scale(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
-
-// A body of the run: its solid, where it sits, and its scene object.
-struct Body {
-  Solid solid;
-  io::SceneObject object;
-};
 
 class Simulation {
  public:
@@ -128,8 +124,8 @@ class Simulation {
       if (progress && (n + 1) % std::max<std::size_t>(1, steps / 10) == 0) progress(n + 1, steps);
     }
     scene_.events = recorder.finish();
-    for (auto& [id, b] : bodies_) {
-      scene_.objects.push_back(b.object);
+    for (const auto& [id, o] : objects_) {
+      scene_.objects.push_back(o);
       if (world.has_body(id)) s.final_states[id] = world.state(id);
     }
     s.steps = steps;
@@ -142,7 +138,7 @@ class Simulation {
 
  private:
   // Adds a body whose mesh coordinates map to the world by `placement`, moving with v, w.
-  void add_body(World& world, int id, Solid solid, const RigidTransform& placement, const Vec3& v, const Vec3& w,
+  void add_body(World& world, int id, const Solid& solid, const RigidTransform& placement, const Vec3& v, const Vec3& w,
                 double created_s, double gap_m) {
     BodySpec spec;
     spec.id = id;
@@ -165,15 +161,12 @@ class Simulation {
     for (int i = 0; i < 3; ++i) o.inertia_kg_m2[i][i] = solid.moments_kg_m2[i];
     o.material = body_material_.name;
     o.created_s = created_s;
-    // The simulator knows each piece's shape, so it gives clatter-synth the piece's own lowest
-    // frequency (FEM, kernels/fem/lowest_mode.hpp), to which the modal proxy is scaled (003 5.4).
-    if (c_.boolean("bodies.base_frequency")) {
-      Stage stage("base frequency (FEM)");
-      o.base_frequency_hz = kernels::fem::lowest_free_mode(solid.vertices_m, solid.triangles, body_material_.youngs_pa,
-                                                           body_material_.poisson, body_material_.rho_kg_m3)
-                                .frequency_hz;
-    }
-    bodies_[id] = {std::move(solid), o};
+    o.base_frequency_hz = solid.base_frequency_hz;
+    objects_[id] = o;
+  }
+
+  Solid solid(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles, const std::string& what) const {
+    return solid_of(vertices, triangles, body_material_, c_.boolean("bodies.base_frequency"), what);
   }
 
   void add_meshes(World& world) {
@@ -189,8 +182,7 @@ class Simulation {
       std::filesystem::path file = files[i];
       if (file.is_relative() && !config_path_.empty()) file = std::filesystem::path(config_path_).parent_path() / file;
       const io::TriangleMesh mesh = io::read_obj(file.string());
-      Solid s = solid_of(mesh.vertices_m, mesh.triangles, body_material_.rho_kg_m3, file.string());
-      add_body(world, next_id_++, std::move(s), {{1, 0, 0, 0}, point(at, i)}, v.empty() ? Vec3{} : point(v, i), {}, 0, 0);
+      add_body(world, next_id_++, solid(mesh.vertices_m, mesh.triangles, file.string()), {{1, 0, 0, 0}, point(at, i)}, v.empty() ? Vec3{} : point(v, i), {}, 0, 0);
     }
   }
 
@@ -225,8 +217,9 @@ class Simulation {
     const double tilt = c_.real("plate.tilt_deg") * std::numbers::pi / 180;
     const RigidTransform placement{{std::cos(tilt / 2), std::sin(tilt / 2), 0, 0}, vector3("plate.position_m")};
     plate_id_ = next_id_++;
-    add_body(world, plate_id_, solid_of(whole.vertices_m, whole.triangles, body_material_.rho_kg_m3, "plate"), placement,
-             vector3("plate.velocity_m_s"), {}, 0, 0);
+    const Solid plate = solid(whole.vertices_m, whole.triangles, "plate");
+    plate_principal_ = plate.principal;
+    add_body(world, plate_id_, plate, placement, vector3("plate.velocity_m_s"), {}, 0, 0);
   }
 
   // At the plate's first contact with an impulse: it is replaced by its pieces, each moving as the
@@ -245,25 +238,23 @@ class Simulation {
     at = scale(at, 1 / weight);
     const BodyState plate = world.state(plate_id_);
     world.remove_body(plate_id_);
-    Body& whole = bodies_.at(plate_id_);
-    whole.object.destroyed_s = t_s;
+    objects_.at(plate_id_).destroyed_s = t_s;
     s.fracture_s = t_s;
     // Plate coordinates -> world, now.
-    const RigidTransform placement = RigidTransform{plate.pose.orientation_wxyz, plate.pose.position_m}.compose(whole.solid.principal.inverse());
+    const RigidTransform placement = RigidTransform{plate.pose.orientation_wxyz, plate.pose.position_m}.compose(plate_principal_.inverse());
     const Vec3 normal = rotate(placement.rotation, {0, 0, 1});
     const double kick = c_.real("plate.kick_m_s"), gap = c_.real("plate.gap_m");
     for (std::size_t i = 0; i < plate_pieces_.size(); ++i) {
       const Piece& p = plate_pieces_[i];
-      Solid solid = solid_of(p.vertices_m, p.triangles, body_material_.rho_kg_m3, fmt::format("plate piece {}", i));
-      const Vec3 centre = placement.apply(solid.principal.translation_m);
+      const Solid piece = solid(p.vertices_m, p.triangles, fmt::format("plate piece {}", i));
+      const Vec3 centre = placement.apply(piece.principal.translation_m);
       Vec3 away = sub(centre, at);
       away = sub(away, scale(normal, dot(away, normal)));
       const double len = std::sqrt(dot(away, away));
       const Vec3 push = len > 0 ? scale(away, kick / len) : Vec3{};
       const Vec3 v = add(add(plate.velocity_m_s, cross(plate.angular_velocity_rad_s, sub(centre, plate.pose.position_m))), push);
       const int id = next_id_++;
-      const double mass = solid.mass_kg;
-      add_body(world, id, std::move(solid), placement, v, plate.angular_velocity_rad_s, t_s, gap);
+      add_body(world, id, piece, placement, v, plate.angular_velocity_rad_s, t_s, gap);
       if (len > 0 && kick > 0) {
         io::SceneEvent e;
         e.t_s = t_s;
@@ -271,7 +262,7 @@ class Simulation {
         e.fracture = true;
         e.contact_time_s = c_.real("plate.fracture_time_s");
         e.point_m = placement.apply(p.fracture_centroid_m);
-        e.impulse_n_s = scale(push, mass);
+        e.impulse_n_s = scale(push, piece.mass_kg);
         e.pose_a = world.state(id).pose;
         recorder.add_event(e);
         ++s.fracture_events;
@@ -298,10 +289,10 @@ class Simulation {
     }
     std::size_t i = 0;
     for (const Piece& p : rocks) {
-      Solid solid = solid_of(p.vertices_m, p.triangles, body_material_.rho_kg_m3, fmt::format("pile piece {}", i++));
+      const Solid rock = solid(p.vertices_m, p.triangles, fmt::format("pile piece {}", i++));
       // The block slides as a sheared layer: the higher a rock, the faster it moves along x.
-      const double height = solid.principal.translation_m[2] - lo[2];
-      add_body(world, next_id_++, std::move(solid), {}, add(v0, {shear * height, 0, 0}), {}, 0, gap);
+      const double height = rock.principal.translation_m[2] - lo[2];
+      add_body(world, next_id_++, rock, {}, add(v0, {shear * height, 0, 0}), {}, 0, gap);
     }
   }
 
@@ -317,9 +308,10 @@ class Simulation {
   WorldOptions options_;
   model::Material body_material_, ground_material_;
   io::Scene scene_;
-  std::map<int, Body> bodies_;
+  std::map<int, io::SceneObject> objects_;  // every body the run created, by id
   int next_id_ = 1, plate_id_ = 0;
-  std::vector<Piece> plate_pieces_;
+  std::vector<Piece> plate_pieces_;          // the plate's cells, in its own coordinates
+  RigidTransform plate_principal_;           // the whole plate's principal frame in those coordinates
 };
 
 }  // namespace

@@ -11,9 +11,6 @@
 namespace clatter::sim {
 namespace {
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross(const Vec3& a, const Vec3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // One voro++ cell as a closed mesh: each face a convex polygon, fanned into triangles and turned to
 // face outward (voro++ does not promise an orientation); its shared faces give the fracture centroid.

@@ -25,8 +25,6 @@ double contact_radius(const kernels::ProxyFit& fit, const Vec3& arm_body) {
   return a * b * c * q;  // = 1 / sqrt(K)
 }
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-
 }  // namespace
 
 std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string& scene_path) {

@@ -15,9 +15,13 @@ PanSource::PanSource(const std::string& bank_path) : bank_(io::read_pan_bank(ban
   if (bank_.proxies.empty()) throw InputError(bank_path + ": the bank holds no proxies");
 }
 
+// Shapes compare at the bank's A: (B, C) = A (b, c) / a.
+std::array<double, 2> PanSource::shape_at_bank_a(const kernels::ProxyFit& fit) const {
+  return {bank_.header.a_m * fit.b_m / fit.a_m, bank_.header.a_m * fit.c_m / fit.a_m};
+}
+
 std::size_t PanSource::nearest_proxy(const kernels::ProxyFit& fit) const {
-  // Shapes compare at the bank's A: (B, C) = A (b, c) / a.
-  const double b = bank_.header.a_m * fit.b_m / fit.a_m, c = bank_.header.a_m * fit.c_m / fit.a_m;
+  const auto [b, c] = shape_at_bank_a(fit);
   std::size_t best = 0;
   double best_d = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < bank_.proxies.size(); ++i) {
@@ -30,9 +34,8 @@ std::size_t PanSource::nearest_proxy(const kernels::ProxyFit& fit) const {
 std::vector<std::string> PanSource::coverage(const std::vector<ObjectModel>& models) const {
   std::vector<std::string> lines;
   for (const ObjectModel& m : models) {
-    const auto& fit = m.proxy;
-    const double b = bank_.header.a_m * fit.b_m / fit.a_m, c = bank_.header.a_m * fit.c_m / fit.a_m;
-    const model::PanProxy& p = bank_.proxies[nearest_proxy(fit)];
+    const auto [b, c] = shape_at_bank_a(m.proxy);
+    const model::PanProxy& p = bank_.proxies[nearest_proxy(m.proxy)];
     const double d = std::hypot(p.b_m - b, p.c_m - c);
     if (d > kCoverage_m)
       lines.push_back(fmt::format("object {}: shape (B, C) = ({:.3f}, {:.3f}) m at A = {} m; the nearest PAN proxy ({:.3f}, {:.3f}) "

@@ -58,19 +58,20 @@ class SoundSource {
 // Acceleration noise from a PAN bank: nearest proxy by shape, scaled by beta = a / A (eq. 10).
 class PanSource : public SoundSource {
  public:
+  // The distance in (B, C) within which an object counts as covered: half the diagonal of the
+  // paper's grid (0.0475 m steps at A = 0.5 m), the farthest its 66-proxy bank leaves any shape.
+  static constexpr double kCoverage_m = 0.0475 * 0.7071067811865476;
+
   explicit PanSource(const std::string& bank_path);
   std::string name() const override { return "pan"; }
   void add(const Impact& impact, const std::vector<Vec3>& listeners_m, int rate_hz,
            std::vector<std::vector<double>>& out) override;
+  std::vector<std::string> coverage(const std::vector<ObjectModel>& models) const override;
+
  private:
   void add_at(const Impact& impact, const Vec3& listener_world_m, int rate_hz, std::vector<double>& out) const;
-  std::size_t nearest_proxy(const kernels::ProxyFit& fit) const;  // closest (B, C) at the bank's A
- public:
-  // The distance in (B, C) within which an object counts as covered: half the diagonal of the
-  // paper's grid (0.0475 m steps at A = 0.5 m), the farthest its 66-proxy bank leaves any shape.
-  static constexpr double kCoverage_m = 0.0475 * 0.7071067811865476;
-  std::vector<std::string> coverage(const std::vector<ObjectModel>& models) const override;
- private:
+  std::array<double, 2> shape_at_bank_a(const kernels::ProxyFit& fit) const;  // (B, C)
+  std::size_t nearest_proxy(const kernels::ProxyFit& fit) const;            // closest (B, C) at the bank's A
 
   model::PanBank bank_;  // as read, evaluated in place (kernels/pan)
 };
