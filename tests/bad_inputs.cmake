@@ -50,6 +50,7 @@ clatter_error_test(bad_ranks_per_task_np2 2 "--ranks-per-task 3;divide the 2 MPI
 clatter_error_test(bad_merge_not_results 0 "nowhere.tasks: not a sweep results folder (no sweep.toml)"
                    merge --results nowhere.tasks -o out.h5)
 clatter_error_test(bad_plan_ranks 0 "--ranks 0;must be >= 1" plan -c ${tiny} --ranks 0)
+clatter_error_test(bad_plan_kind 0 "--kind: no bank kind 'lamb' (known: pan, modal, ground)" plan --kind lamb)
 set(probe_args probe ${good_bank} --proxy 0.35,0.2 --field 1)
 clatter_error_test(bad_probe_rate 0 "--rate -5;must be >= 0 Hz" ${probe_args} --point 1,0.5,0.5 --rate -5)
 clatter_error_test(bad_probe_point_nan 0 "--point 1,nan,0.5;coordinates must be finite" ${probe_args} --point 1,nan,0.5)
@@ -167,7 +168,9 @@ clatter_error_test(bad_results_other_config 0 "--results ${bad_results}/other.ta
                    pan -c ${tiny} --results ${bad_results}/other.tasks -o out.h5)
 clatter_error_test(bad_results_without_resume 0 "present.tasks: already holds 1 of this sweep's task files;add --resume"
                    pan -c ${tiny} --results ${bad_results}/present.tasks -o out.h5)
-set_tests_properties(bad_results_other_config bad_results_without_resume PROPERTIES FIXTURES_REQUIRED bad_results)
+clatter_error_test(bad_results_no_kind 0 "nokind.tasks/sweep.toml: line 1 must name the bank kind;add that line"
+                   merge --results ${bad_results}/nokind.tasks -o out.h5)
+set_tests_properties(bad_results_other_config bad_results_without_resume bad_results_no_kind PROPERTIES FIXTURES_REQUIRED bad_results)
 # Accepted, not refused: an unreadable task file is redone on --resume and the bank is written.
 add_test(NAME bad_results_corrupt_task_redone COMMAND ${expect_output}
          "warning: sweep: redoing p000-f1: .*p000-f1.h5: not a readable HDF5 file" "merge: wrote .*corrupt.h5 \\(1 of 1 tasks"

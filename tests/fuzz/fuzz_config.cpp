@@ -6,7 +6,7 @@
 
 #include "core/errors.hpp"
 #include "io/config.hpp"
-#include "jobs/pan_spec.hpp"
+#include "banks/pan/pan_spec.hpp"
 #include "tests/fuzz/fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

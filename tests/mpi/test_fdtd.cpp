@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "jobs/solve_job.hpp"
+#include "banks/pan/solve_job.hpp"
 #include "kernels/fdtd/dispersion.hpp"
 #include "kernels/pulse.hpp"
 #include "mpi/comm.hpp"

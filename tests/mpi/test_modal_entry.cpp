@@ -16,10 +16,10 @@
 #include <sstream>
 
 #include "io/config.hpp"
-#include "jobs/modal_fem.hpp"
-#include "jobs/modal_job.hpp"
-#include "jobs/modal_solve.hpp"
-#include "jobs/modal_spec.hpp"
+#include "banks/modal/modal_fem.hpp"
+#include "banks/modal/modal_job.hpp"
+#include "banks/modal/modal_solve.hpp"
+#include "banks/modal/modal_spec.hpp"
 #include "petsc/session.hpp"
 #include "tests/reference/lamb_sphere.hpp"
 

@@ -15,7 +15,7 @@
 #include <numbers>
 #include <vector>
 
-#include "jobs/modal_fem.hpp"
+#include "banks/modal/modal_fem.hpp"
 #include "kernels/fem/ellipsoid_mesh.hpp"
 #include "petsc/eigen.hpp"
 #include "petsc/session.hpp"

@@ -16,9 +16,9 @@
 #include <sstream>
 
 #include "io/config.hpp"
-#include "jobs/modal_job.hpp"
-#include "jobs/modal_spec.hpp"
-#include "jobs/modal_transfer.hpp"
+#include "banks/modal/modal_job.hpp"
+#include "banks/modal/modal_spec.hpp"
+#include "banks/modal/modal_transfer.hpp"
 #include "kernels/transfer/surface_interpolation.hpp"
 #include "tests/reference/kirchhoff_helmholtz.hpp"
 

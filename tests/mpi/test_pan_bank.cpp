@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "io/pan_bank.hpp"
-#include "jobs/pan_job.hpp"
+#include "banks/pan/pan_job.hpp"
 #include "kernels/pan/directions.hpp"
 #include "kernels/contact.hpp"
 #include "kernels/pan/field.hpp"

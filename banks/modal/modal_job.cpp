@@ -1,0 +1,203 @@
+#include "banks/modal/modal_job.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <optional>
+
+#include "core/errors.hpp"
+#include "core/stage_log.hpp"
+#include "io/modal_bank.hpp"
+#include "io/sweep_files.hpp"
+#include "banks/modal/modal_fem.hpp"
+#include "banks/modal/modal_solve.hpp"
+#include "banks/modal/modal_transfer.hpp"
+#include "mpi/comm.hpp"
+
+namespace clatter::jobs {
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+double since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
+
+// Every rank meshes alike (TetGen is deterministic), so a failure is the same everywhere.
+kernels::fem::EllipsoidMesh mesh_or_fail(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m) {
+  Stage stage("mesh");
+  try {
+    return mesh_entry(spec, axes, h_m);
+  } catch (const std::exception& e) {
+    throw TaskFailure(e.what());
+  }
+}
+
+ModalSolveSettings solve_settings(const ModalSpec& spec) {
+  ModalSolveSettings s;
+  s.f_max_multiple = spec.header.f_max_multiple;
+  s.cluster_gap = spec.header.cluster_gap;
+  s.degenerate_gap = spec.header.degenerate_gap;
+  s.tolerance = spec.solver_tolerance;
+  s.residual_limit = spec.header.residual_limit;
+  s.max_iterations = spec.max_iterations;
+  s.nev_per_shift = spec.nev_per_shift;
+  return s;
+}
+
+model::ModalMeshStats mesh_stats(const kernels::fem::MeshQuality& q) {
+  return {q.elements,         q.nodes,           q.dofs,         q.edge_length_m, q.max_radius_edge,
+          q.mean_radius_edge, q.min_dihedral_deg, q.max_dihedral_deg, q.min_jacobian_ratio};
+}
+
+// The surface nodes (in ascending mesh order) and the faces renumbered onto them.
+void extract_surface(const kernels::fem::EllipsoidMesh& mesh, model::ModalEntry& entry, std::vector<int>& nodes) {
+  std::map<int, std::int32_t> index;
+  for (const auto& face : mesh.boundary)
+    for (int v : face) index.emplace(v, 0);
+  for (auto& [node, at] : index) {
+    at = static_cast<std::int32_t>(nodes.size());
+    nodes.push_back(node);
+    const auto p = mesh.mesh.nodes_m.col(node);
+    entry.surface_nodes_m.push_back({p(0), p(1), p(2)});
+  }
+  for (const auto& face : mesh.boundary) {
+    std::array<std::int32_t, 6> f{};
+    for (int k = 0; k < 6; ++k) f[static_cast<std::size_t>(k)] = index.at(face[static_cast<std::size_t>(k)]);
+    entry.surface_faces.push_back(f);
+  }
+}
+
+}  // namespace
+
+kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m) {
+  std::string reasons;
+  for (double factor : {1.0, 0.7, 0.5}) {
+    try {
+      kernels::fem::EllipsoidMeshSettings settings{axes, factor * h_m};
+      settings.spacing_per_curvature_radius *= factor;  // the cap 2a/3 may fix h: refine the surface too
+      return kernels::fem::mesh_ellipsoid(settings, spec.bounds);
+    } catch (const kernels::fem::MeshError& e) {
+      reasons += fmt::format("{}at h = {:.4g} m: {}", reasons.empty() ? "" : "; ", factor * h_m, e.what());
+    }
+  }
+  throw kernels::fem::MeshError(fmt::format("no mesh within the quality bounds ({})", reasons));
+}
+
+double modal_edge_length_m(const ModalSpec& spec, double f1_hz) {
+  return spec.header.material.shear_speed_m_s() / (spec.header.f_max_multiple * f1_hz) /
+         spec.header.elements_per_wavelength;
+}
+
+model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::size_t index) {
+  const auto t_start = clock_type::now();
+  const auto& axes = spec.samples_m.at(index);
+  const auto& material = spec.header.material;
+  const ModalSolveSettings settings = solve_settings(spec);
+  model::ModalEntry entry;
+  entry.cost.ranks = mpi::size(group);
+  double lambda1_estimate = 0;
+  {
+    Stage stage("estimate");
+    const auto t0 = clock_type::now();
+    const auto coarse = mesh_or_fail(spec, axes, spec.coarse_edge_m);
+    const FemModel model = assemble_fem(group, coarse.mesh, material);
+    // A sphere of radius c rings at omega c / c_s ~ 2.5 (Lamb's n = 2); elongation lowers it.
+    const double guess = std::pow(2.5 * material.shear_speed_m_s() / axes[2], 2);
+    lambda1_estimate = first_elastic_lambda(model, guess, settings);
+    entry.cost.estimate_s = since(t0);
+  }
+  const double f1_estimate_hz = std::sqrt(lambda1_estimate) / (2 * std::numbers::pi);
+  auto t0 = clock_type::now();
+  const auto mesh = mesh_or_fail(spec, axes, modal_edge_length_m(spec, f1_estimate_hz));
+  entry.cost.mesh_s = since(t0);
+  t0 = clock_type::now();
+  std::optional<FemModel> model;
+  {
+    Stage stage("assembly");
+    model.emplace(assemble_fem(group, mesh.mesh, material));
+  }
+  const auto reference = reference_fields(model->layout, mesh.mesh, axes);
+  entry.cost.assembly_s = since(t0);
+  ModeSet modes;
+  {
+    Stage stage("eigensolve");
+    t0 = clock_type::now();
+    modes = solve_modes(*model, reference, lambda1_estimate, settings);
+    entry.cost.solve_s = since(t0);
+  }
+  entry.cost.factor_memory_mb = static_cast<double>(modes.stats.check_factor.memory_max_mb);
+  entry.cost.memory_max_mb = modes.stats.memory_max_mb;
+  entry.sample = static_cast<std::uint32_t>(index);
+  entry.axes_m = axes;
+  entry.mesh = mesh_stats(mesh.quality);
+  entry.solve = modes.record;
+  entry.solve.first_mode_estimate_hz = f1_estimate_hz;
+  std::vector<int> surface;
+  extract_surface(mesh, entry, surface);
+  const bool root = mpi::rank(group) == 0;
+  {
+    Stage stage("surface");
+    for (std::size_t i = 0; i < modes.lambdas.size(); ++i) {
+      const std::vector<double> u = modes.vectors[i].gather_to_root();
+      if (!root) continue;
+      for (int node : surface)
+        for (int c = 0; c < 3; ++c) entry.shapes.push_back(u[static_cast<std::size_t>(3 * node + c)]);
+      const double omega = std::sqrt(modes.lambdas[i]);
+      entry.frequencies_hz.push_back(omega / (2 * std::numbers::pi));
+      entry.damping_ratios.push_back(material.damping_ratio(omega));
+      entry.cluster.push_back(modes.cluster[i]);
+      entry.relative_residuals.push_back(modes.relative_residuals[i]);
+    }
+  }
+  compute_modal_transfer(group, spec.header.transfer, entry);
+  entry.cost.total_s = since(t_start);
+  if (!root) return {};
+  return entry;
+}
+
+TaskWriter run_modal_task(MPI_Comm group, const ModalSpec& spec, const ModalTask& task) {
+  auto entry = build_modal_entry(group, spec, task.entry);
+  if (mpi::rank(group) != 0) return {};
+  spdlog::info("modal: {} axes ({:.4f}, {:.4f}, {:.4f}): {} modes {:.1f}-{:.1f} Hz, {} dofs; transfer {:.1f} s, "
+               "median boundary residual {:.1e}; {:.1f} s", task.name, entry.axes_m[0], entry.axes_m[1], entry.axes_m[2],
+               entry.modes(), entry.frequencies_hz.front(), entry.frequencies_hz.back(), entry.mesh.dofs,
+               entry.cost.transfer_s, median(entry.transfer.boundary_residual), entry.cost.total_s);
+  return [entry = std::move(entry)](io::File& file, const std::string& group_name) {
+    io::write_modal_entry(file, group_name, entry);
+  };
+}
+
+model::ModalBank merge_modal_results(const ModalSpec& spec, const std::string& results_dir,
+                                     const std::string& config_toml) {
+  model::ModalBank bank;
+  bank.header = spec.header;
+  const auto tasks = modal_tasks(spec);
+  bank.sweep.sweep_id = io::sweep_id(config_toml);
+  bank.sweep.tasks_total = static_cast<std::uint32_t>(tasks.size());
+  for (const auto& t : tasks) {
+    const auto& a = spec.samples_m[t.entry];
+    const std::string label = fmt::format("{} axes ({:.4f}, {:.4f}, {:.4f}) m", t.name, a[0], a[1], a[2]);
+    if (!task_done(results_dir, t.name, label, config_toml, bank.sweep)) continue;
+    const std::string path = io::task_path(results_dir, t.name);
+    auto file = io::File::open(path);
+    auto entry = io::read_modal_entry(file, "/result");
+    if (entry.axes_m != a || entry.sample != t.entry)
+      throw InputError(fmt::format("{}: holds axes ({}, {}, {}), the sweep's task {} has ({}, {}, {})", path,
+                                   entry.axes_m[0], entry.axes_m[1], entry.axes_m[2], t.name, a[0], a[1], a[2]));
+    bank.entries.push_back(std::move(entry));
+  }
+  for (const auto& e : bank.entries)
+    bank.header.ranks_per_task = (&e == &bank.entries.front() || e.cost.ranks == bank.header.ranks_per_task) ? e.cost.ranks : 0;
+  return bank;
+}
+
+}  // namespace clatter::jobs

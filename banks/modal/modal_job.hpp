@@ -1,0 +1,37 @@
+#pragma once
+// One entry of the modal bank (003 §5): the ellipsoid meshed twice (a coarse pre-solve estimates
+// f_1, which sets h from the shear wavelength at f_max and the sliced interval), K and M assembled
+// on the task group, every mode in [f_1, f_max] solved and fixed by the basis rule, the shapes
+// gathered on the surface.
+#include <mpi.h>
+
+#include <string>
+
+#include "banks/modal/modal_spec.hpp"
+#include "sweep/sweep.hpp"
+#include "model/modal_bank.hpp"
+
+namespace clatter::jobs {
+
+// Collective on `group`; the full entry on the group's rank 0, an empty one elsewhere. Throws
+// TaskFailure (mesh quality, count check, residual) or Interrupted, alike on every rank.
+model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::size_t entry);
+
+// The sweep's task: build_modal_entry and, on the group leader, the writer of its task file.
+TaskWriter run_modal_task(MPI_Comm group, const ModalSpec& spec, const ModalTask& task);
+
+// The bank from a results folder: every task found done, the others listed as failed or missing.
+// The header's ranks_per_task is the entries' common group size (0 when a resume changed it).
+model::ModalBank merge_modal_results(const ModalSpec& spec, const std::string& results_dir,
+                                     const std::string& config_toml);
+
+// The ellipsoid's mesh at edge length h_m, or, when it breaks the quality bounds, at 0.7 and then
+// 0.5 times both h_m and the surface spacing per curvature radius (a finer surface resolves the
+// curvature that folded; h alone may be held by the thickness cap); throws a MeshError
+// with every attempt's reason. Deterministic, so every rank of a group gets the same mesh.
+kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m);
+
+// The edge length that resolves the shear wavelength at f_max: c_s / f_max / elements_per_wavelength.
+double modal_edge_length_m(const ModalSpec& spec, double first_frequency_hz);
+
+}  // namespace clatter::jobs

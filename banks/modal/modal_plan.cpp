@@ -1,0 +1,144 @@
+#include "banks/modal/modal_plan.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <thread>
+
+#include "core/errors.hpp"
+#include "banks/modal/modal_fem.hpp"
+#include "banks/modal/modal_job.hpp"
+#include "banks/modal/modal_solve.hpp"
+#include "banks/modal/modal_spec.hpp"
+#include "cli/run_options.hpp"
+#include "petsc/inertia.hpp"
+
+namespace clatter::jobs {
+namespace {
+
+// Time ~ modes x dofs^1.5: each mode costs a share of a shift's factorization and solves with
+// the factors; 3-D nested-dissection factorizations grow like n^2, their solves like n^(4/3).
+constexpr double kDofsExponent = 1.5;
+// Factor memory of 3-D nested dissection grows like n^(4/3).
+constexpr double kMemoryExponent = 4.0 / 3.0;
+// Measured (docs/benchmarks.md "Modal bank"): 2 ranks per task run the default sphere entry 1.23x
+// faster than 1 (the slicing's triangular solves scale poorly), 2^0.3 = 1.23.
+constexpr double kGroupSpeedupExponent = 0.3;
+// The transfer's time per mode grows like (k_max c)^4.5 (sources ~ (kc)^2 whose Green's functions
+// and QR cost (kc)^4 to (kc)^6; docs/benchmarks.md "Acoustic transfer"), spread evenly over a group.
+constexpr double kTransferExponent = 4.5;
+
+// k c at the top of an entry's range: what sizes its transfer.
+double top_kc(const ModalSpec& spec, double f1_hz, const std::array<double, 3>& axes) {
+  return 2 * std::numbers::pi * f1_hz * spec.header.f_max_multiple * axes[2] / spec.header.transfer.sound_speed_m_s;
+}
+
+struct EntryPlan {
+  double f1_hz = 0, h_m = 0;
+  long long dofs = 0, modes = 0;
+  double task_s = 0, memory_mb = 0;
+  std::string failure;  // the mesh or pre-solve failed: the task will fail the same way
+};
+
+EntryPlan plan_entry(const ModalSpec& spec, std::size_t i) {
+  EntryPlan p;
+  const auto& axes = spec.samples_m[i];
+  const auto& material = spec.header.material;
+  try {
+    const auto coarse = mesh_entry(spec, axes, spec.coarse_edge_m);
+    const FemModel model = assemble_fem(MPI_COMM_SELF, coarse.mesh, material);
+    ModalSolveSettings settings;
+    settings.tolerance = spec.solver_tolerance;
+    const double lambda1 = first_elastic_lambda(model, std::pow(2.5 * material.shear_speed_m_s() / axes[2], 2), settings);
+    const double k = spec.header.f_max_multiple;
+    p.modes = petsc::eigenvalues_below(model.K, model.M, k * k * lambda1 * 1.0001) - 6;
+    p.f1_hz = std::sqrt(lambda1) / (2 * std::numbers::pi);
+    p.h_m = modal_edge_length_m(spec, p.f1_hz);
+    p.dofs = mesh_entry(spec, axes, p.h_m).quality.dofs;
+  } catch (const std::exception& e) {
+    p.failure = e.what();
+  }
+  return p;
+}
+
+}  // namespace
+
+PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o) {
+  const ModalSpec spec = make_modal_spec(config);
+  const auto tasks = modal_tasks(spec);
+  std::vector<EntryPlan> entries;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < tasks.size(); ++i) entries.push_back(plan_entry(spec, i));
+  const double presolve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // Calibration: the smallest entry that meshes, solved in full as the sweep will.
+  std::size_t cal = tasks.size();
+  for (std::size_t i = 0; i < entries.size(); ++i)
+    if (entries[i].failure.empty() && (cal == tasks.size() || entries[i].dofs < entries[cal].dofs)) cal = i;
+  if (cal == tasks.size()) throw InputError("plan: no entry of the sweep meshes; see mesh.* and patch.samples");
+  const auto entry = build_modal_entry(MPI_COMM_SELF, spec, cal);
+  const double cal_transfer_s = entry.cost.transfer_s, cal_s = entry.cost.total_s - cal_transfer_s;
+  const double cal_modes = static_cast<double>(std::max<std::size_t>(entry.modes(), 1));
+  const double cal_kc = top_kc(spec, entries[cal].f1_hz, spec.samples_m[cal]);
+  // The coarse mesh undercounts the top of the range (its frequencies are high): scaled by what
+  // the calibration entry's fine solve found against its coarse count.
+  const double count_scale = cal_modes / static_cast<double>(std::max<long long>(entries[cal].modes, 1));
+  // MUMPS' own figure: the process's resident size here also holds every pre-solve before it.
+  const double cal_dofs = static_cast<double>(entry.mesh.dofs), cal_memory = entry.cost.factor_memory_mb;
+  const double group_speedup = std::pow(o.ranks_per_task, kGroupSpeedupExponent);
+  PlanEstimate e;
+  double core_s = 0, worst_memory = 0;
+  for (auto& p : entries) {
+    if (!p.failure.empty()) {
+      e.task_s.push_back(0);
+      continue;
+    }
+    p.modes = std::llround(static_cast<double>(p.modes) * count_scale);
+    const double dofs_ratio = static_cast<double>(p.dofs) / cal_dofs;
+    const double mode_ratio = static_cast<double>(p.modes) / cal_modes;
+    const double kc_ratio = top_kc(spec, p.f1_hz, spec.samples_m[static_cast<std::size_t>(&p - entries.data())]) / cal_kc;
+    p.task_s = cal_s * mode_ratio * std::pow(dofs_ratio, kDofsExponent) / group_speedup +
+               cal_transfer_s * mode_ratio * std::pow(kc_ratio, kTransferExponent) / o.ranks_per_task;
+    p.memory_mb = cal_memory * std::pow(dofs_ratio, kMemoryExponent) / o.ranks_per_task;
+    e.task_s.push_back(p.task_s);
+    core_s += p.task_s * o.ranks_per_task;
+    worst_memory = std::max(worst_memory, p.memory_mb);
+  }
+  const int cores = o.cores_per_node > 0 ? o.cores_per_node : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  e.nodes = (o.ranks + cores - 1) / cores;
+  const int groups = o.ranks / o.ranks_per_task;
+  const double wall_s = list_schedule_s(e.task_s, groups);
+  e.signal_lead_s = static_cast<int>(std::max(120.0, 1.2 * *std::max_element(e.task_s.begin(), e.task_s.end()) + 60));
+  const auto& m = spec.header.material;
+  e.report = fmt::format("plan: {}: modal bank of {} ellipsoids, {} (c_s = {:.1f} m/s), modes to {} f_1\n",
+                         o.config_path.empty() ? "defaults" : o.config_path, tasks.size(), m.name, m.shear_speed_m_s(),
+                         spec.header.f_max_multiple);
+  e.report += fmt::format("  pre-solves:  every entry's f_1, h, dofs and mode count (coarse inertia) in {:.1f} s here\n",
+                          presolve_s);
+  e.report += fmt::format("  calibration: {} solved here in {:.1f} s + {:.1f} s transfer: {} modes, {} dofs, {:.0f} MB MUMPS "
+                          "factors; time ~ modes x dofs^{} / ranks_per_task^{} + modes x (k c)^{} / ranks_per_task\n",
+                          tasks[cal].name, cal_s, cal_transfer_s, entry.modes(), entry.mesh.dofs, cal_memory,
+                          kDofsExponent, kGroupSpeedupExponent, kTransferExponent);
+  e.report += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}: {:.2f} core-hours\n",
+                          o.ranks, e.nodes, cores, groups, o.ranks_per_task, core_s / 3600);
+  e.report += fmt::format("  predicted:   {} wall (tasks handed out in order); largest MUMPS factors per rank ~{:.0f} MB; time "
+                          "limit with 1.5x margin + 10 min: {}\n", clock_text(wall_s), worst_memory,
+                          clock_text(1.5 * wall_s + 600));
+  e.report += "  tasks:\n";
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    const auto& p = entries[i];
+    const auto& a = spec.samples_m[i];
+    e.report += p.failure.empty()
+                    ? fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  f_1 {:8.1f} Hz  h {:.4f} m  {:7} dofs  ~{:5} modes  "
+                                  "~{}\n", tasks[i].name, a[0], a[1], a[2], p.f1_hz, p.h_m, p.dofs, p.modes,
+                                  clock_text(p.task_s))
+                    : fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  will fail: {}\n", tasks[i].name, a[0], a[1], a[2],
+                                  p.failure);
+  }
+  return e;
+}
+
+}  // namespace clatter::jobs

@@ -1,0 +1,161 @@
+#include "banks/modal/modal_solve.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "core/interrupt.hpp"
+#include "core/stage_log.hpp"
+#include "kernels/modal/mode_basis.hpp"
+#include "mpi/comm.hpp"
+#include "petsc/error.hpp"
+#include "petsc/subspace.hpp"
+
+namespace clatter::jobs {
+namespace {
+
+constexpr PetscInt kRigidMotions = 6;
+
+petsc::SliceSettings slice(const ModalSolveSettings& s, double lo, double hi) {
+  petsc::SliceSettings out;
+  out.lambda_lo = lo;
+  out.lambda_hi = hi;
+  out.tolerance = s.tolerance;
+  out.max_iterations = static_cast<PetscInt>(s.max_iterations);
+  out.nev_per_shift = static_cast<PetscInt>(s.nev_per_shift);
+  return out;
+}
+
+// Count mismatches and solver failures are the task's, not the sweep's.
+petsc::EigenSolution solve_or_fail(const FemModel& m, const petsc::SliceSettings& s) {
+  try {
+    return petsc::solve_interval(m.K, m.M, s, m.rigid);
+  } catch (const petsc::CountMismatch& e) {
+    throw TaskFailure(fmt::format("count check: {}", e.what()));
+  } catch (const petsc::Error& e) {
+    throw TaskFailure(fmt::format("eigen-solve of [{:.6g}, {:.6g}] (rad/s)^2 failed: {}", s.lambda_lo, s.lambda_hi,
+                                  e.what()));
+  }
+}
+
+// The number of kept modes: those up to `keep_to`, then the rest of the multiplet at the edge.
+std::size_t kept_count(const std::vector<double>& lambdas, double keep_to, double gap) {
+  std::size_t n = 0;
+  while (n < lambdas.size() && lambdas[n] <= keep_to) ++n;
+  while (n > 0 && n < lambdas.size() && std::sqrt(lambdas[n]) <= std::sqrt(lambdas[n - 1]) * (1 + gap)) ++n;
+  return n;
+}
+
+// Rayleigh-Ritz and the reference-field rule in each cluster; residuals of the final vectors.
+void apply_basis_rule(const FemModel& m, const std::vector<petsc::Vector>& reference, const ModalSolveSettings& s,
+                      ModeSet& set) {
+  Stage stage("basis");
+  std::vector<double> omegas;
+  for (double l : set.lambdas) omegas.push_back(std::sqrt(l));
+  const auto clusters = kernels::modal::clusters_by_gap(omegas, s.cluster_gap);
+  std::vector<petsc::Vector> vectors;
+  for (std::size_t c = 0; c < clusters.size(); ++c) {
+    const auto [begin, end] = clusters[c];
+    const std::span<const petsc::Vector> u(set.vectors.data() + begin, static_cast<std::size_t>(end - begin));
+    std::vector<petsc::Vector> ku, mu;
+    for (const auto& x : u) {
+      ku.push_back(petsc::multiply(m.K, x));
+      mu.push_back(petsc::multiply(m.M, x));
+    }
+    const auto n = static_cast<Eigen::Index>(u.size());
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    const RowMajor a = Eigen::Map<const RowMajor>(petsc::inner_products(u, ku).data(), n, n);
+    const RowMajor b = Eigen::Map<const RowMajor>(petsc::inner_products(u, mu).data(), n, n);
+    const RowMajor g = Eigen::Map<const RowMajor>(petsc::inner_products(mu, reference).data(), n,
+                                                  static_cast<Eigen::Index>(reference.size()));
+    const auto basis = kernels::modal::cluster_basis(a, b, g, s.degenerate_gap);
+    set.degenerate_groups += basis.degenerate_groups;
+    if (basis.degenerate_groups > 0 && basis.rank_margin < 1e-6)
+      spdlog::warn("modal: a degenerate multiplet at {:.6g} rad/s is barely fixed by the reference fields (margin {:.2g})",
+                   omegas[static_cast<std::size_t>(begin)], basis.rank_margin);
+    const RowMajor t = basis.rotation;
+    const std::span<const double> tt(t.data(), static_cast<std::size_t>(t.size()));
+    auto rotated = petsc::combine(u, tt, u.size());
+    const auto kr = petsc::combine(ku, tt, u.size()), mr = petsc::combine(mu, tt, u.size());
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto at = static_cast<std::size_t>(begin + i);
+      set.lambdas[at] = basis.lambdas[static_cast<std::size_t>(i)];
+      set.relative_residuals[at] = petsc::relative_residual(kr[static_cast<std::size_t>(i)],
+                                                            mr[static_cast<std::size_t>(i)], set.lambdas[at]);
+      set.cluster[at] = static_cast<int>(c);
+      vectors.push_back(std::move(rotated[static_cast<std::size_t>(i)]));
+    }
+  }
+  set.vectors = std::move(vectors);
+}
+
+}  // namespace
+
+void poll_interrupt(MPI_Comm comm, const char* where) {
+  int local = interrupt_requested() ? 1 : 0, any = 0;
+  mpi::check(MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm), "MPI_Allreduce");
+  if (any) throw Interrupted(fmt::format("interrupted before {}", where));
+}
+
+double first_elastic_lambda(const FemModel& m, double guess, const ModalSolveSettings& s) {
+  double sigma = guess;
+  PetscInt below = petsc::eigenvalues_below(m.K, m.M, sigma);
+  for (int step = 0; below > kRigidMotions && step < 40; ++step) below = petsc::eigenvalues_below(m.K, m.M, sigma /= 4);
+  if (below != kRigidMotions)
+    throw TaskFailure(fmt::format("{} eigenvalues below {:.4g} (rad/s)^2 where only the 6 rigid motions should be: "
+                                  "spurious modes near zero (a bad mesh or material)", below, sigma));
+  double hi = 4 * sigma;
+  for (int step = 0; petsc::eigenvalues_below(m.K, m.M, hi) == kRigidMotions; ++step) {
+    if (step == 40) throw TaskFailure(fmt::format("no elastic mode below {:.4g} (rad/s)^2", hi));
+    sigma = hi;
+    hi *= 4;
+  }
+  poll_interrupt(m.layout.comm(), "the first-mode solve");
+  const auto solution = solve_or_fail(m, slice(s, sigma, hi));
+  if (solution.lambdas.empty()) throw TaskFailure(fmt::format("no mode found in [{:.6g}, {:.6g}] (rad/s)^2", sigma, hi));
+  return solution.lambdas.front();
+}
+
+ModeSet solve_modes(const FemModel& m, const std::vector<petsc::Vector>& reference, double lambda1_estimate,
+                    const ModalSolveSettings& s) {
+  const double k2 = s.f_max_multiple * s.f_max_multiple;
+  double lo = 0.25 * lambda1_estimate, hi = 1.1 * k2 * lambda1_estimate;
+  for (int attempt = 0;; ++attempt) {
+    poll_interrupt(m.layout.comm(), "the eigen-solve");
+    petsc::EigenSolution solution = solve_or_fail(m, slice(s, lo, hi));
+    if (solution.below_lo != kRigidMotions)
+      throw TaskFailure(fmt::format("{} eigenvalues below {:.6g} (rad/s)^2, a quarter of the first mode's estimate: "
+                                    "expected the 6 rigid motions", solution.below_lo, lo));
+    if (solution.lambdas.empty()) throw TaskFailure(fmt::format("no mode in [{:.6g}, {:.6g}] (rad/s)^2", lo, hi));
+    const double keep_to = k2 * solution.lambdas.front();
+    const std::size_t kept = kept_count(solution.lambdas, keep_to, s.cluster_gap);
+    const double needed = keep_to * (1 + s.cluster_gap) * (1 + s.cluster_gap);
+    if (kept == solution.lambdas.size() && needed > hi && attempt < 2) {  // f_1 was overestimated: widen
+      spdlog::info("modal: f_1 estimate low by {:.2g} %; solving to {:.6g} (rad/s)^2", 100 * (1 - lambda1_estimate / solution.lambdas.front()), 1.2 * needed);
+      hi = 1.2 * needed;
+      continue;
+    }
+    if (kept == solution.lambdas.size() && needed > hi)
+      throw TaskFailure("the interval end stays inside the last multiplet after 3 solves");
+    ModeSet set;
+    set.lambdas.assign(solution.lambdas.begin(), solution.lambdas.begin() + static_cast<long>(kept));
+    for (std::size_t i = 0; i < kept; ++i) set.vectors.push_back(std::move(solution.vectors[i]));
+    set.relative_residuals.assign(kept, 0);
+    set.cluster.assign(kept, 0);
+    set.stats = solution.stats;
+    set.record = {lo, hi, solution.below_lo, solution.below_hi,
+                  static_cast<std::int64_t>(solution.lambdas.size()), solution.stats.shifts, 0, solution.options};
+    apply_basis_rule(m, reference, s, set);
+    for (std::size_t i = 0; i < kept; ++i)
+      if (!(set.relative_residuals[i] <= s.residual_limit))
+        throw TaskFailure(fmt::format("mode {} at {:.6g} Hz: relative residual {:.3g} > solver.residual_limit {:.3g}", i,
+                                      std::sqrt(set.lambdas[i]) / (2 * M_PI), set.relative_residuals[i],
+                                      s.residual_limit));
+    return set;
+  }
+}
+
+}  // namespace clatter::jobs

@@ -1,0 +1,47 @@
+#pragma once
+// The eigen-solve of one ellipsoid's FEM model on its task group: the first elastic mode by
+// inertia bracketing, then every mode in [f_1, f_max] by SLEPc spectrum slicing (count-checked by
+// inertia, rigid motions deflated), whole multiplets kept, the basis rule of
+// kernels/modal/mode_basis.hpp applied. Collective on the model's communicator.
+#include <vector>
+
+#include "banks/modal/modal_fem.hpp"
+#include "model/modal_bank.hpp"
+#include "petsc/eigen.hpp"
+
+namespace clatter::jobs {
+
+// Collective: throws Interrupted on every rank of `comm` if any has been asked to stop (SIGTERM),
+// so a long stage leaves at a point where every rank is.
+void poll_interrupt(MPI_Comm comm, const char* where);
+
+struct ModalSolveSettings {
+  double f_max_multiple = 4;
+  double cluster_gap = 5e-3;      // relative, in frequency
+  double degenerate_gap = 1e-8;   // Ritz values closer than this are one degenerate group
+  double tolerance = 1e-11, residual_limit = 1e-8;
+  long long max_iterations = 0, nev_per_shift = 0;
+};
+
+// The lowest eigenvalue above the 6 rigid motions [rad^2/s^2]. `guess` may be on either side.
+// Throws TaskFailure when the inertia never shows exactly 6 motions below a shift.
+double first_elastic_lambda(const FemModel& model, double guess, const ModalSolveSettings& settings);
+
+struct ModeSet {
+  std::vector<double> lambdas;                 // ascending [rad^2/s^2]
+  std::vector<petsc::Vector> vectors;          // M-normalized, basis rule applied
+  std::vector<double> relative_residuals;
+  std::vector<int> cluster;                    // multiplet index per mode
+  model::ModalSolveRecord record;
+  petsc::SolveStats stats;
+  int degenerate_groups = 0;
+};
+
+// Every mode from the first elastic one up to (f_max_multiple f_1)^2, and the rest of the
+// multiplet that straddles it. `lambda1_estimate`: from a coarser mesh (within a few %).
+// TaskFailure when the inertia count disagrees, the rigid motions are not exactly 6, or a residual
+// exceeds the limit.
+ModeSet solve_modes(const FemModel& model, const std::vector<petsc::Vector>& reference, double lambda1_estimate,
+                    const ModalSolveSettings& settings);
+
+}  // namespace clatter::jobs

@@ -1,0 +1,143 @@
+#include "banks/modal/modal_spec.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "io/materials.hpp"
+#include "io/text_file.hpp"
+#include "kernels/modal/patch_sampling.hpp"
+#include "kernels/transfer/mode_transfer.hpp"
+
+namespace clatter::jobs {
+namespace {
+
+// The transfer's defaults are the kernel's own (one definition).
+const kernels::transfer::TransferSettings kTransfer{};
+
+// A sweep of more entries is a mistake, not a bank (003's banks have tens).
+constexpr std::size_t kMaxSamples = 10000;
+
+// The default patch samples: `clatter-bank modal-samples` with the defaults (docs/modal.md
+// "Sampling the patch"), a, b, c per row.
+const io::RealList& default_samples() {
+  static const io::RealList samples = {
+#include "banks/modal/modal_default_samples.inc"
+  };
+  return samples;
+}
+
+}  // namespace
+
+const io::Schema& modal_schema() {
+  static const io::Schema schema{
+      "clatter-bank modal: the modal bank (FEM modes of normalized ellipsoids, SLEPc spectrum slicing)",
+      {
+          {"material.name", std::string("glass"), "material of the bank: a table of material.table"},
+          {"material.table", std::string(""), "materials file (TOML, docs/materials.md); empty: the built-in "
+                                              "configs/materials.toml"},
+          {"patch.min_ratio", 0.1, "smallest axis ratio a/c covered (the pancake and cigar corners)",
+           {0.0, 1.0, true, true}},
+          {"patch.samples", default_samples(), "normalized semi-axes a <= b <= c, a^2 + b^2 + c^2 = 1 [m], one entry "
+                                               "each (default: modal-samples output)", {0.0, 1.0, true}, {}, 3},
+          {"modes.f_max_multiple", 4.0, "keep every mode up to f_max = this x f_1", {1.0, 64.0, true}},
+          {"modes.cluster_gap", 5e-3, "relative gap below which neighbouring frequencies form one multiplet",
+           {0.0, 0.1, true}},
+          {"mesh.elements_per_wavelength", 3.0, "h = shear wavelength at f_max / this", {1.0, 20.0}},
+          {"mesh.coarse_edge_m", 0.25, "h of the pre-solve that estimates f_1 (sets h and the interval) [m]",
+           {0.0, 1.0, true}},
+          {"mesh.max_radius_edge", 3.0, "largest radius-edge ratio a mesh may have", {1.0, 100.0}},
+          {"mesh.min_dihedral_deg", 5.0, "smallest dihedral angle a mesh may have [deg]", {0.0, 60.0}},
+          {"mesh.min_jacobian_ratio", 0.2, "smallest min/max det J within a curved element", {0.0, 1.0, true}},
+          {"solver.tolerance", 1e-11, "SLEPc's relative convergence tolerance (-eps_tol)", {1e-15, 1e-6}},
+          {"solver.residual_limit", 1e-8, "largest relative residual ||Ku - lambda Mu|| / ||Ku|| a mode may have",
+           {1e-15, 1e-3}},
+          {"solver.max_iterations", std::int64_t{0}, "SLEPc restarts per shift; 0: SLEPc's default", {0, 1e6}},
+          {"solver.nev_per_shift", std::int64_t{0}, "eigenpairs sought around each shift; 0: SLEPc's default",
+           {0, 1e4}},
+          {"medium.c_m_s", kTransfer.sound_speed_m_s, "speed of sound of the air the modes radiate into [m/s]",
+           {0.0, 1e5, true}},
+          {"medium.rho_kg_m3", kTransfer.air_density_kg_m3, "density of the air [kg/m^3]", {0.0, 1e5, true}},
+          {"transfer.points_per_source", kTransfer.points_per_source,
+           "fit points per source, along each grid angle (docs/transfer.md)", {1.0, 20.0}},
+          {"transfer.sources_per_wavelength", kTransfer.sources_per_wavelength,
+           "equivalent sources per air wavelength on their layer", {1.0, 20.0}},
+          {"transfer.residual_target", kTransfer.residual_target,
+           "boundary residual x normal fraction above which other source layers are tried", {1e-8, 1.0}},
+          {"transfer.tail_tolerance", kTransfer.tail_tolerance, "far-field share (L2) the multipole truncation may drop",
+           {1e-8, 0.1}},
+      }};
+  return schema;
+}
+
+ModalSpec make_modal_spec(const io::Config& config) {
+  ModalSpec spec;
+  auto& h = spec.header;
+  const std::string& table = config.string("material.table");
+  spec.material_table = table.empty() ? "built-in configs/materials.toml" : table;
+  const std::string text = table.empty() ? io::builtin_materials_toml() : io::read_text_file(table, "materials file");
+  h.material = io::find_material(io::parse_materials(text, spec.material_table), config.string("material.name"),
+                                 spec.material_table);
+  h.min_ratio = config.real("patch.min_ratio");
+  h.f_max_multiple = config.real("modes.f_max_multiple");
+  h.cluster_gap = config.real("modes.cluster_gap");
+  h.elements_per_wavelength = config.real("mesh.elements_per_wavelength");
+  h.solver_tolerance = config.real("solver.tolerance");
+  h.residual_limit = config.real("solver.residual_limit");
+  spec.solver_tolerance = h.solver_tolerance;
+  spec.max_iterations = config.integer("solver.max_iterations");
+  spec.nev_per_shift = config.integer("solver.nev_per_shift");
+  spec.coarse_edge_m = config.real("mesh.coarse_edge_m");
+  h.coarse_edge_m = spec.coarse_edge_m;
+  h.transfer.method = "equivalent sources (monopoles on a layer under the surface, 8 parity classes), multipole "
+                      "about the centre";
+  h.transfer.sound_speed_m_s = config.real("medium.c_m_s");
+  h.transfer.air_density_kg_m3 = config.real("medium.rho_kg_m3");
+  h.transfer.points_per_source = config.real("transfer.points_per_source");
+  h.transfer.sources_per_wavelength = config.real("transfer.sources_per_wavelength");
+  h.transfer.residual_target = config.real("transfer.residual_target");
+  h.transfer.tail_tolerance = config.real("transfer.tail_tolerance");
+  h.degenerate_gap = 1e-8;  // ModalSolveSettings' default: splits far below any mesh asymmetry
+  spec.bounds = {config.real("mesh.max_radius_edge"), config.real("mesh.min_dihedral_deg"),
+                 config.real("mesh.min_jacobian_ratio")};
+  if (!(h.residual_limit > h.solver_tolerance))
+    throw InputError(fmt::format("solver.residual_limit = {} must exceed solver.tolerance = {}: the solver stops at "
+                                 "its tolerance", h.residual_limit, h.solver_tolerance));
+  const auto& list = config.reals("patch.samples");
+  if (list.empty()) throw InputError("patch.samples = []: a modal bank needs at least one ellipsoid");
+  if (list.size() / 3 > kMaxSamples)
+    throw InputError(fmt::format("patch.samples: {} ellipsoids; at most {}", list.size() / 3, kMaxSamples));
+  for (std::size_t i = 0; i + 2 < list.size(); i += 3) {
+    const std::array<double, 3> axes{list[i], list[i + 1], list[i + 2]};
+    const std::string why = kernels::modal::patch_violation(axes, h.min_ratio, 1e-6);
+    if (!why.empty())
+      throw InputError(fmt::format("patch.samples[{}] = [{}, {}, {}]: {} (patch.min_ratio = {})", i / 3, axes[0],
+                                   axes[1], axes[2], why, h.min_ratio));
+    const double norm = std::sqrt(axes[0] * axes[0] + axes[1] * axes[1] + axes[2] * axes[2]);
+    spec.samples_m.push_back({axes[0] / norm, axes[1] / norm, axes[2] / norm});  // to rounding
+    for (std::size_t j = 0; j + 1 < spec.samples_m.size(); ++j)
+      if (spec.samples_m[j] == spec.samples_m.back())
+        throw InputError(fmt::format("patch.samples[{}] = [{}, {}, {}]: the same ellipsoid as patch.samples[{}]", i / 3,
+                                     axes[0], axes[1], axes[2], j));
+  }
+  return spec;
+}
+
+std::string modal_sweep_toml(const io::Config& config, const ModalSpec& spec) {
+  const auto& m = spec.header.material;
+  return config.to_toml() +
+         fmt::format("\n# material '{}' as read from {}:\n# rho_kg_m3 = {:.17g}, youngs_pa = {:.17g}, poisson = {:.17g}, "
+                     "rayleigh_alpha_1_s = {:.17g}, rayleigh_beta_s = {:.17g}\n",
+                     m.name, spec.material_table, m.rho_kg_m3, m.youngs_pa, m.poisson, m.rayleigh_alpha_1_s,
+                     m.rayleigh_beta_s);
+}
+
+std::vector<ModalTask> modal_tasks(const ModalSpec& spec) {
+  std::vector<ModalTask> tasks;
+  for (std::size_t i = 0; i < spec.samples_m.size(); ++i) tasks.push_back({i, fmt::format("e{:03d}", i)});
+  return tasks;
+}
+
+}  // namespace clatter::jobs

@@ -1,0 +1,116 @@
+#include "banks/modal/modal_tools.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+
+#include "core/errors.hpp"
+#include "io/h5.hpp"
+#include "io/modal_bank.hpp"
+#include "kernels/transfer/multipole.hpp"
+
+namespace clatter::jobs {
+namespace {
+
+// "1 x 40, 2 x 6, 5 x 1": how many multiplets of each size.
+std::string multiplicities(const model::ModalEntry& e) {
+  std::map<int, int> count_of_size;
+  for (std::size_t i = 0; i < e.modes();) {
+    std::size_t j = i;
+    while (j < e.modes() && e.cluster[j] == e.cluster[i]) ++j;
+    ++count_of_size[static_cast<int>(j - i)];
+    i = j;
+  }
+  std::string out;
+  for (const auto& [size, count] : count_of_size) out += fmt::format("{}{}x{}", out.empty() ? "" : ", ", size, count);
+  return out;
+}
+
+std::string entry_table(const model::ModalEntry& e, std::size_t index) {
+  std::string out = fmt::format("entry {}: axes ({:.6f}, {:.6f}, {:.6f}) m, {} modes\n", index, e.axes_m[0], e.axes_m[1],
+                                e.axes_m[2], e.modes());
+  out += "mode,frequency_hz,damping_ratio,multiplet,multiplicity,relative_residual,transfer_order,"
+         "boundary_residual,normal_attempts,sources\n";
+  const auto& t = e.transfer;
+  for (std::size_t i = 0; i < e.modes(); ++i) {
+    const auto size = std::count(e.cluster.begin(), e.cluster.end(), e.cluster[i]);
+    out += fmt::format("{},{:.9g},{:.4g},{},{},{:.2e},{},{:.2e},{},{}\n", i, e.frequencies_hz[i], e.damping_ratios[i],
+                       e.cluster[i], size, e.relative_residuals[i], t.order[i], t.boundary_residual[i], t.attempts[i],
+                       t.sources[i]);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string modal_probe_csv(const std::string& path, std::size_t entry, const std::array<double, 3>& point_m,
+                            double scale) {
+  const model::ModalBank bank = io::read_modal_bank(path);
+  if (entry >= bank.entries.size())
+    throw InputError(fmt::format("--entry {}: {} holds entries 0-{}", entry, path, bank.entries.size() - 1));
+  if (!(scale > 0)) throw InputError(fmt::format("--scale {}: must be positive", scale));
+  const Eigen::Vector3d x(point_m[0], point_m[1], point_m[2]);
+  const auto& e = bank.entries[entry];
+  // The expansion holds outside the sphere around its sources; the bank promises r >= 2c.
+  if (x.norm() < 2 * scale * e.axes_m[2])
+    throw InputError(fmt::format("--point {},{},{}: {:.4g} m from the centre; the transfer holds from 2c = {:.4g} m",
+                                 point_m[0], point_m[1], point_m[2], x.norm(), 2 * scale * e.axes_m[2]));
+  std::string out = "mode,frequency_hz,abs_p_Pa,transfer_order,boundary_residual\n";
+  for (std::size_t i = 0; i < e.modes(); ++i) {
+    const auto m = kernels::transfer::scaled(kernels::transfer::stored_multipole(e.transfer, i), scale);
+    out += fmt::format("{},{:.9g},{:.9e},{},{:.2e}\n", i, e.frequencies_hz[i] / scale, std::abs(m.pressure(x)),
+                       m.order, e.transfer.boundary_residual[i]);
+  }
+  return out;
+}
+
+std::string modal_bank_info(const std::string& path, std::optional<std::size_t> entry) {
+  const model::ModalBank bank = io::read_modal_bank(path);
+  if (entry) {
+    if (*entry >= bank.entries.size())
+      throw InputError(fmt::format("--entry {}: {} holds entries 0-{}", *entry, path, bank.entries.size() - 1));
+    return entry_table(bank.entries[*entry], *entry);
+  }
+  const auto& h = bank.header;
+  const auto& m = h.material;
+  const double file_mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
+  std::string out = fmt::format("{}: modal bank (format {} v{}), {} ellipsoids, {:.3f} MB on disk\n", path,
+                                io::kModalBankFormat, io::kModalBankFormatVersion, bank.entries.size(), file_mb);
+  out += fmt::format("  material:   {}: rho = {} kg/m^3, E = {:.4g} Pa, nu = {}, c_s = {:.1f} m/s; Rayleigh alpha = {} "
+                     "1/s, beta = {} s\n", m.name, m.rho_kg_m3, m.youngs_pa, m.poisson, m.shear_speed_m_s(),
+                     m.rayleigh_alpha_1_s, m.rayleigh_beta_s);
+  out += fmt::format("  settings:   modes f_1 .. {} f_1; h = shear wavelength at f_max / {}; min a/c {}; multiplets "
+                     "split by < {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", h.f_max_multiple,
+                     h.elements_per_wavelength, h.min_ratio, h.cluster_gap, h.solver_tolerance, h.residual_limit,
+                     h.ranks_per_task);
+  const auto& tr = h.transfer;
+  out += fmt::format("  transfer:   {}; air c = {} m/s, rho = {} kg/m^3; {} fit points per source (per angle), {} sources per wavelength, "
+                     "residual target {}, tail {}\n", tr.method, tr.sound_speed_m_s, tr.air_density_kg_m3,
+                     tr.points_per_source, tr.sources_per_wavelength, tr.residual_target, tr.tail_tolerance);
+  out += "  entry  a        b        c        modes  f_1 [Hz]   last [Hz]   dofs     max res   min dihedral  time [s]  "
+         "transfer: max order, max boundary res (normal fraction > 0.3), s  multiplicities (size x count)\n";
+  for (std::size_t i = 0; i < bank.entries.size(); ++i) {
+    const auto& e = bank.entries[i];
+    const double worst = e.modes() ? *std::max_element(e.relative_residuals.begin(), e.relative_residuals.end()) : 0;
+    const auto& t = e.transfer;
+    const int order = e.modes() ? *std::max_element(t.order.begin(), t.order.end()) : 0;
+    double boundary = 0;  // over the modes that push the air (a torsional mode's residual is its noise's)
+    for (std::size_t k = 0; k < e.modes(); ++k)
+      if (t.normal_fraction[k] > 0.3) boundary = std::max(boundary, t.boundary_residual[k]);
+    out += fmt::format("  {:<5}  {:.5f}  {:.5f}  {:.5f}  {:<5}  {:<9.2f}  {:<10.2f}  {:<7}  {:.1e}   {:<12.1f}  {:<8.1f}  "
+                       "{:<3} {:.1e} {:<7.1f}                                        {}\n", i, e.axes_m[0], e.axes_m[1], e.axes_m[2], e.modes(),
+                       e.modes() ? e.frequencies_hz.front() : 0.0, e.modes() ? e.frequencies_hz.back() : 0.0,
+                       e.mesh.dofs, worst, e.mesh.min_dihedral_deg, e.cost.total_s, order, boundary, e.cost.transfer_s,
+                       multiplicities(e));
+  }
+  const auto& sw = bank.sweep;
+  out += fmt::format("  sweep:      {} of {} entries in the bank, {} failed, {} missing\n", sw.tasks_done(),
+                     sw.tasks_total, sw.failed.size(), sw.missing.size());
+  for (const auto& f : sw.failed) out += "    failed:  " + f + "\n";
+  for (const auto& x : sw.missing) out += "    missing: " + x + "\n";
+  return out;
+}
+
+}  // namespace clatter::jobs

@@ -1,0 +1,34 @@
+#pragma once
+// `clatter-bank pan`: the PAN proxy bank (Chadwick et al. 2012, sections 4-5). For each proxy
+// ellipsoid (A, B, C): octant FDTD solves of the 6 rigid-body fields recorded at 45 directions x M
+// radii, the wavelet fit of each direction, and the compressed bank file (io/pan_bank.hpp).
+#include <mpi.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "io/config.hpp"
+#include "io/pan_bank.hpp"
+#include "banks/pan/pan_spec.hpp"
+#include "banks/pan/solve_job.hpp"
+#include "sweep/sweep.hpp"
+#include "model/pan_bank.hpp"
+
+namespace clatter::jobs {
+
+// Solves one proxy (all ranks) and fits it (rank 0). `extra_listeners_m` are recorded too and
+// returned raw per field (validation); on other ranks the result is empty.
+struct ProxyResult {
+  model::PanProxy proxy;
+  std::vector<std::vector<float>> extra_series;  // per field: [extra listener][sample]
+};
+ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
+                        const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s);
+
+// Solves and fits one task on `group`; the writer of its result on the group's rank 0.
+TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s);
+// The bank from a results folder: every task found done, the others listed as failed or missing.
+model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml);
+
+}  // namespace clatter::jobs

@@ -1,0 +1,92 @@
+#include "banks/pan/pan_kind.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+#include <memory>
+
+#include "banks/pan/pan_job.hpp"
+#include "banks/pan/pan_plan.hpp"
+#include "banks/pan/pan_tools.hpp"
+#include "banks/pan/solve_job.hpp"
+#include "core/errors.hpp"
+#include "io/pan_bank.hpp"
+#include "kernels/pan/directions.hpp"
+
+namespace clatter::jobs {
+namespace {
+
+class PanKind final : public BankKind {
+ public:
+  const char* name() const override { return "pan"; }
+  const char* description() const override {
+    return "build a PAN proxy bank: FDTD solves over the (B, C) proxies, wavelet fit, compression "
+           "(docs/bank-format.md)";
+  }
+  const char* default_out() const override { return "bank.h5"; }
+  const char* file_format() const override { return io::kPanBankFormat; }
+  const io::Schema& schema() const override { return pan_schema(); }
+
+  BankSweep sweep(const io::Config& config, const RunContext& context) const override {
+    const auto spec = std::make_shared<const PanSpec>(make_pan_spec(config));
+    const auto tasks = std::make_shared<const std::vector<PanTask>>(pan_tasks(*spec));
+    BankSweep sweep;
+    sweep.manifest = {name(), config.to_toml()};
+    sweep.summary = fmt::format("{} proxies x {} fields = {} tasks; {} directions x {} radii, N = {}, epsilon = {}",
+                                spec->proxies_bc_m.size(), spec->solve.fields.size(), tasks->size(),
+                                kernels::pan::vertex_count(spec->divisions), spec->radii_m.size(), spec->terms,
+                                spec->epsilon);
+    for (const auto& t : *tasks) sweep.task_names.push_back(t.name);
+    sweep.run_task = [spec, tasks, progress_s = context.progress_interval_s](MPI_Comm group, std::size_t t) {
+      return run_pan_task(group, *spec, (*tasks)[t], progress_s);
+    };
+    sweep.merge = [spec, config_toml = sweep.manifest.config_toml](const std::string& results_dir) {
+      auto bank = std::make_shared<const model::PanBank>(merge_pan_results(*spec, results_dir, config_toml));
+      return MergedBank{bank->sweep, [bank, config_toml](const std::string& out, const std::string& command, int n_ranks) {
+                          io::write_pan_bank(out, *bank, command, config_toml, n_ranks);
+                        }};
+    };
+    return sweep;
+  }
+
+  FileTool info(CLI::App&) const override { return {{}, [](const std::string& path) { return pan_bank_info(path); }}; }
+
+  FileTool probe(CLI::App& app, const ProbePoint& point) const override {
+    auto request = std::make_shared<ProbeRequest>();
+    ProbeRequest& r = *request;
+    CLI::Option* proxy = app.add_option("--proxy", r.proxy_bc_m, "PAN: proxy semi-axes B,C [m]")->delimiter(',');
+    CLI::Option* field = app.add_option("--field", r.field, "PAN: rigid-body field 1-6");
+    CLI::Option* rate = app.add_option("--rate", r.rate_hz, "PAN: output sample rate [Hz]: reconstruct within 2x of it "
+                                                            "(Algorithm 1); 0: the bank's rate")
+                            ->capture_default_str();
+    CLI::Option* interpolation =
+        app.add_option("--interpolation", r.interpolation, "PAN: between directions: quadratic (default) or linear "
+                                                           "(the paper's)")
+            ->transform(CLI::CheckedTransformer(std::map<std::string, kernels::pan::Interpolation>{
+                {"linear", kernels::pan::Interpolation::linear}, {"quadratic", kernels::pan::Interpolation::quadratic}}));
+    return {{proxy, field, rate, interpolation}, [request, &point, proxy, field](const std::string& path) {
+              if (proxy->count() == 0 || field->count() == 0)
+                throw InputError("probe " + path + ": a PAN bank needs --proxy B,C and --field N");
+              ProbeRequest q = *request;
+              q.bank_path = path;
+              q.point_m = point.point_m;
+              q.scale = point.scale;
+              return probe_csv(q);
+            }};
+  }
+
+  PlanEstimate plan(const io::Config& config, const PlanOptions& options) const override {
+    return pan_plan_estimate(config, options);
+  }
+
+  std::vector<Command> more_commands(CLI::App& parent) const override { return {add_solve_command(parent)}; }
+};
+
+}  // namespace
+
+const BankKind& pan_kind() {
+  static const PanKind kind;
+  return kind;
+}
+
+}  // namespace clatter::jobs

@@ -1,0 +1,202 @@
+#include "banks/pan/pan_spec.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "banks/medium_keys.hpp"
+#include "kernels/fdtd/problem.hpp"
+#include "kernels/pan/directions.hpp"
+#include "kernels/pan/fit.hpp"
+#include "kernels/pan/wavelet.hpp"
+
+namespace clatter::jobs {
+
+namespace pan = kernels::pan;
+
+// Far beyond a useful bank (the paper's grid has 66 proxies), far below exhausting memory.
+constexpr double kMaxProxies = 1e5;
+
+const io::Schema& pan_schema() {
+  static const io::Schema schema = [] {
+    io::Schema s{"clatter-bank pan: the PAN proxy bank (FDTD solves, wavelet fit, compression)", medium_and_pulse_keys()};
+    // The defaults are the paper's bank (Chadwick et al. 2012, section 5), the one users should build;
+    // configs/pan-demo.toml is the small fast one.
+    s.keys.insert(s.keys.end(), {
+        {"proxies.a_m", 0.5, "semi-axis A of every proxy [m]", {0.0, 100.0, true}},
+        {"proxies.grid_min_m", 0.025, "smallest B and C of the proxy grid [m]", {0.0, 100.0, true}},
+        {"proxies.grid_step_m", 0.0475, "step of B and C in the proxy grid [m]", {0.0, 100.0, true}},
+        {"proxies.list_m", io::RealList{}, "explicit (B, C) proxies [m]; when given, replaces the grid", {0.0, 100.0},
+         {}, 2},
+        {"grid.dx_m", 0.0065, "cell size [m]", {0.0, 10.0, true}},
+        {"grid.pml_cells", std::int64_t{6}, "thickness of the perfectly matched layer [cells]", {0, 256}},
+        {"time.dt_s", 1.0 / 96000.0, "time step = PAN sample interval [s]; CFL limit dx / (c sqrt 3)", {0.0, 1.0, true}},
+        {"time.tail_s", 0.012, "recorded time after the pulse reaches the farthest radius [s]", {0.0, 10.0, true}},
+        {"solve.fields", io::RealList{1, 2, 3, 4, 5, 6}, "rigid-body fields to solve and store", {1, 6}},
+        {"fit.radii_m", io::RealList{0.7, 0.85, 1.0, 1.2, 1.5},
+         "the M listening radii [m], outside the bounding sphere; rounded to whole steps of c dt", {0.0, 1e4, true}},
+        {"fit.terms", std::int64_t{2}, "N, terms of the 1/R^k series (8)", {1, 8}},
+        {"fit.divisions", std::int64_t{8}, "octant edges cut in d (even): (d+1)(d+2)/2 directions, d^2 triangles; 8: "
+                                           "the paper's 45 and 64", {2, 64}},
+        {"fit.epsilon", 0.01, "keep wavelet coefficient j iff some |p^_i^j| >= epsilon ||p^_i||_inf", {0.0, 1.0}},
+        {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
+        {"solver.scheme", std::string("me4"), "update away from the body: me4 (fourth order in space and time, "
+                                              "25 points) or srl (the 7-point leapfrog, second order)",
+         {}, {"me4", "srl"}},
+        {"solver.max_dispersion_error", 0.02, "warn when the predicted dispersion error of the pulse at the farthest "
+                                              "radius exceeds this (relative L2)", {0.0, 10.0, true}},
+    });
+    return s;
+  }();
+  return schema;
+}
+
+PanParams parse_pan_params(const io::Config& config) {
+  PanParams p;
+  p.medium_c_m_s = config.real("medium.c_m_s");
+  p.medium_rho_kg_m3 = config.real("medium.rho_kg_m3");
+  p.pulse_h_s = config.real("pulse.h_s");
+  p.proxies_a_m = config.real("proxies.a_m");
+  p.proxies_grid_min_m = config.real("proxies.grid_min_m");
+  p.proxies_grid_step_m = config.real("proxies.grid_step_m");
+  const auto& list = config.reals("proxies.list_m");
+  for (std::size_t i = 0; i + 1 < list.size(); i += 2) p.proxies_list_m.push_back({list[i], list[i + 1]});
+  p.grid_dx_m = config.real("grid.dx_m");
+  p.grid_pml_cells = static_cast<int>(config.integer("grid.pml_cells"));
+  p.time_dt_s = config.real("time.dt_s");
+  p.time_tail_s = config.real("time.tail_s");
+  p.solve_fields = config.reals("solve.fields");
+  p.fit_radii_m = config.reals("fit.radii_m");
+  p.fit_terms = static_cast<int>(config.integer("fit.terms"));
+  p.fit_divisions = static_cast<int>(config.integer("fit.divisions"));
+  p.fit_epsilon = config.real("fit.epsilon");
+  p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
+  p.solver_scheme = config.string("solver.scheme");
+  p.solver_max_dispersion_error = config.real("solver.max_dispersion_error");
+  return p;
+}
+
+PanSpec make_pan_spec(const io::Config& config) { return make_pan_spec(parse_pan_params(config)); }
+
+namespace {
+
+// The (B, C) proxies: the explicit list, or the grid C <= B <= A.
+std::vector<std::array<double, 2>> proxy_list(const PanParams& in) {
+  if (!in.proxies_list_m.empty()) return in.proxies_list_m;
+  std::vector<std::array<double, 2>> out;
+  const double lo = in.proxies_grid_min_m, step = in.proxies_grid_step_m;
+  // Refused before building: a fine step would otherwise exhaust memory (found by fuzz_config).
+  const double n_values = std::floor((in.proxies_a_m * (1 + 1e-12) - lo) / step) + 1;
+  if (n_values * (n_values + 1) / 2 > kMaxProxies)
+    throw InputError(fmt::format("config: key 'proxies.grid_step_m' has {}: the grid from proxies.grid_min_m = {} to "
+                                 "proxies.a_m = {} would hold {:.3g} proxies, more than {}",
+                                 step, lo, in.proxies_a_m, n_values * (n_values + 1) / 2, kMaxProxies));
+  std::vector<double> values;
+  for (int i = 0; lo + i * step <= in.proxies_a_m * (1 + 1e-12); ++i) values.push_back(lo + i * step);
+  for (std::size_t b = 0; b < values.size(); ++b)
+    for (std::size_t c = 0; c <= b; ++c) out.push_back({values[b], values[c]});
+  return out;
+}
+
+// One proxy's solve: octant mode (the bank stores the positive octant; eqs. 16-21 give the rest),
+// a sphere of radius A (build_proxy sets the body per proxy), listeners at every direction x radius.
+SolveParams proxy_solve_params(const PanParams& in, const PanSpec& spec) {
+  const double r_max = *std::max_element(spec.radii_m.begin(), spec.radii_m.end());
+  SolveParams s = parse_solve_params(io::Config(solve_schema()));  // the solve's defaults for the rest
+  s.medium_c_m_s = in.medium_c_m_s;
+  s.medium_rho_kg_m3 = in.medium_rho_kg_m3;
+  s.pulse_h_s = in.pulse_h_s;
+  s.grid_dx_m = in.grid_dx_m;
+  // Room for the listeners' tricubic stencils (2 cells) and, for me4, the blend into the layer (an
+  // unknown scheme is make_solve_spec's error).
+  const auto scheme = kernels::fdtd::scheme_from_name(in.solver_scheme).value_or(kernels::fdtd::Scheme::srl);
+  s.grid_half_width_m = r_max + (3 + kernels::fdtd::blend_cells(scheme, in.grid_pml_cells)) * in.grid_dx_m;
+  s.grid_pml_cells = in.grid_pml_cells;
+  s.grid_octant = true;
+  s.time_dt_s = in.time_dt_s;
+  s.time_duration_s = r_max / in.medium_c_m_s + in.time_tail_s;
+  s.object_a_m = s.object_b_m = s.object_c_m = spec.a_m;
+  s.solver_cut_cell_samples = in.solver_cut_cell_samples;
+  s.solver_scheme = in.solver_scheme;
+  s.solver_max_dispersion_error = in.solver_max_dispersion_error;
+  s.solve_fields = in.solve_fields;
+  s.listeners_points_m.clear();
+  for (const auto& d : pan::direction_vertices(spec.divisions))
+    for (double r : spec.radii_m) s.listeners_points_m.push_back({r * d[0], r * d[1], r * d[2]});
+  return s;
+}
+
+}  // namespace
+
+PanSpec make_pan_spec(const PanParams& in) {
+  PanSpec spec;
+  spec.a_m = in.proxies_a_m;
+  spec.proxies_bc_m = proxy_list(in);
+  for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) {
+    const auto [b, c] = spec.proxies_bc_m[p];
+    if (!(c <= b && b <= spec.a_m))
+      throw InputError(fmt::format("config: key 'proxies.list_m' proxy {} = [{}, {}]: needs C <= B <= A = {}", p + 1, b,
+                                   c, spec.a_m));
+  }
+  spec.terms = in.fit_terms;
+  spec.divisions = in.fit_divisions;
+  if (spec.divisions % 2 != 0)  // the quadratic direction elements group the triangles in fours
+    throw InputError(fmt::format("config: key 'fit.divisions' has {}: must be even", spec.divisions));
+  spec.epsilon = in.fit_epsilon;
+  const double c_m_s = in.medium_c_m_s, dt = in.time_dt_s, dx = in.grid_dx_m;
+  for (double r : in.fit_radii_m) {
+    const int k = static_cast<int>(std::lround(r / (c_m_s * dt)));
+    spec.shift_steps.push_back(k);
+    spec.radii_m.push_back(k * c_m_s * dt);
+    if (spec.radii_m.back() < spec.a_m + 2 * dx)
+      throw InputError(fmt::format("config: key 'fit.radii_m' has {}: must lie outside the bounding sphere "
+                                   "(A = {} m) by two cells (grid.dx_m = {})",
+                                   r, spec.a_m, dx));
+  }
+  if (static_cast<int>(spec.radii_m.size()) < spec.terms)
+    throw InputError(fmt::format("config: key 'fit.radii_m' has {} radii: need at least fit.terms = {}",
+                                 spec.radii_m.size(), spec.terms));
+  spec.solve = make_solve_spec(proxy_solve_params(in, spec));  // CFL, domain and listener checks
+  spec.lead_steps = static_cast<int>(std::ceil(spec.a_m / (c_m_s * dt)));
+  const int k_min = *std::min_element(spec.shift_steps.begin(), spec.shift_steps.end()) - spec.lead_steps;
+  spec.length = static_cast<std::uint32_t>(pan::next_power_of_two(static_cast<std::size_t>(spec.solve.n_samples - k_min)));
+  return spec;
+}
+
+model::PanBankHeader pan_header(const PanSpec& spec) {
+  model::PanBankHeader h;
+  const auto& p = spec.solve.problem;
+  h.c_m_s = p.c_m_s;
+  h.rho_kg_m3 = p.rho_kg_m3;
+  h.h_s = p.h_s;
+  h.dt_s = p.dt_s;
+  h.t_first_s = -(spec.solve.i_time_zero + spec.lead_steps) * p.dt_s;
+  h.epsilon = spec.epsilon;
+  h.a_m = spec.a_m;
+  h.terms = spec.terms;
+  h.length = spec.length;
+  h.radii_m = spec.radii_m;
+  h.directions = pan::direction_vertices(spec.divisions);
+  for (const auto& t : pan::direction_triangles(spec.divisions)) h.triangles.push_back({t[0], t[1], t[2]});
+  return h;
+}
+
+std::vector<std::int32_t> proxy_delay_steps(const PanSpec& spec, std::size_t proxy) {
+  std::vector<std::int32_t> out;
+  for (const auto& d : pan::direction_vertices(spec.divisions))
+    out.push_back(pan::support_delay_steps(d, spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1],
+                                           spec.solve.problem.c_m_s, spec.solve.problem.dt_s));
+  return out;
+}
+
+std::vector<PanTask> pan_tasks(const PanSpec& spec) {
+  std::vector<PanTask> tasks;
+  for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p)
+    for (int field : spec.solve.fields)
+      tasks.push_back({p, field, fmt::format("p{:03}-f{}", p, field)});
+  return tasks;
+}
+
+}  // namespace clatter::jobs

@@ -1,0 +1,72 @@
+#pragma once
+// The input contract of `clatter-bank pan`, without MPI: its config schema, the user's parameters
+// parsed from it (PanParams), the validated PanSpec, the bank header and task list it implies. In
+// clatter_specs (no MPI, no HDF5), so a fuzzer or a serial tool can check a PAN config exactly as
+// clatter-bank does.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/config.hpp"
+#include "banks/pan/solve_spec.hpp"
+#include "model/pan_bank.hpp"
+
+namespace clatter::jobs {
+
+const io::Schema& pan_schema();
+
+struct PanSpec {
+  SolveSpec solve;                     // one proxy's solve; body and listeners set per proxy
+  std::vector<std::array<double, 2>> proxies_bc_m;  // (B, C)
+  double a_m = 0.5;
+  std::vector<double> radii_m;         // whole numbers of steps: shift[i] * c * dt
+  std::vector<int> shift_steps;
+  // The retarded frame starts A/c before the pulse: no listener outside the bounding sphere hears
+  // anything before t - R/c = -2h - A/c. Each series is shifted by shift_steps[i] - lead_steps.
+  int lead_steps = 0;
+  int terms = 2;
+  int divisions = 8;                   // octant triangulation: 8 -> 45 directions (the paper's)
+  double epsilon = 0.01;
+  std::uint32_t length = 0;            // wavelet length T
+};
+
+// The parameters of a PAN bank as the user gives them: one field per key of pan_schema(), named
+// after it (section_key, with its unit); parse_pan_params has checked the schema's types and ranges.
+struct PanParams {
+  double medium_c_m_s = 0, medium_rho_kg_m3 = 0;
+  double pulse_h_s = 0;
+  double proxies_a_m = 0, proxies_grid_min_m = 0, proxies_grid_step_m = 0;
+  std::vector<std::array<double, 2>> proxies_list_m;  // (B, C); when given, replaces the grid
+  double grid_dx_m = 0;
+  int grid_pml_cells = 0;
+  double time_dt_s = 0, time_tail_s = 0;
+  std::vector<double> solve_fields;
+  std::vector<double> fit_radii_m;
+  int fit_terms = 0, fit_divisions = 0;
+  double fit_epsilon = 0;
+  int solver_cut_cell_samples = 0;
+  std::string solver_scheme = "me4";
+  double solver_max_dispersion_error = 0.02;
+};
+
+PanParams parse_pan_params(const io::Config& config);
+
+// Throws InputError for any invalid combination (the solve's checks included: make_solve_spec).
+PanSpec make_pan_spec(const PanParams& params);
+// make_pan_spec(parse_pan_params(config)).
+PanSpec make_pan_spec(const io::Config& config);
+
+model::PanBankHeader pan_header(const PanSpec& spec);
+// Per direction: the proxy's support-distance alignment (kernels/pan/fit.hpp).
+std::vector<std::int32_t> proxy_delay_steps(const PanSpec& spec, std::size_t proxy);
+
+// The sweep (jobs/sweep.hpp): one task per proxy and solved field, named "pNNN-fK".
+struct PanTask {
+  std::size_t proxy = 0;
+  int field = 1;
+  std::string name;
+};
+std::vector<PanTask> pan_tasks(const PanSpec& spec);
+
+}  // namespace clatter::jobs

@@ -1,0 +1,90 @@
+#include "banks/pan/pan_tools.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "core/errors.hpp"
+#include "io/h5.hpp"
+#include "io/pan_bank.hpp"
+#include "kernels/pan/field.hpp"
+
+namespace clatter::jobs {
+
+std::string pan_bank_info(const std::string& path) {
+  const model::PanBank bank = io::read_pan_bank(path);
+  const auto& h = bank.header;
+  auto file = io::File::open(path);
+  auto prov = [&](const char* key) { return io::read_string_attribute(file, "/provenance", key); };
+  auto run = [&](const char* key) { return io::read_string_attribute(file, "/provenance/run", key); };
+  std::size_t kept = 0;
+  for (const auto& p : bank.proxies)
+    for (const auto& f : p.fields)
+      for (const auto& d : f) kept += d.index.size();
+  const double file_mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
+  const double raw_mb = static_cast<double>(bank.proxies.size()) * 6 * static_cast<double>(h.directions.size()) *
+                        static_cast<double>(h.terms) * h.length * 4 / 1e6;
+  std::string out = fmt::format("{}: PAN bank (format {} v{})\n", path, io::kPanBankFormat, io::kPanBankFormatVersion);
+  out += fmt::format("  proxies:     {} ellipsoids, A = {} m, fields 1-6 (translation x y z, rotation x y z)\n",
+                     bank.proxies.size(), h.a_m);
+  std::string list;
+  for (const auto& p : bank.proxies) list += fmt::format(" ({:.4g}, {:.4g})", p.b_m, p.c_m);
+  out += "  (B, C) [m]: " + list + "\n";
+  out += fmt::format("  medium:      c = {} m/s, rho = {} kg/m^3; pulse h = {} s; t = 0 at the centre of psi\n", h.c_m_s,
+                     h.rho_kg_m3, h.h_s);
+  out += fmt::format("  sampling:    {:.6g} Hz, wavelet length {} (Daubechies 10)\n", 1.0 / h.dt_s, h.length);
+  std::string radii;
+  for (double r : h.radii_m) radii += fmt::format(" {:.4g}", r);
+  out += fmt::format("  fit:         {} directions x {} radii [m]:{}; N = {} terms; epsilon = {}\n", h.directions.size(),
+                     h.radii_m.size(), radii, h.terms, h.epsilon);
+  out += fmt::format("  size:        {:.3f} MB on disk, {} coefficients kept ({:.2f} % of {:.1f} MB as raw float32 q_k)\n",
+                     file_mb, kept, 100.0 * file_mb / raw_mb, raw_mb);
+  out += fmt::format("  provenance:  clatter {} (git {}), {} ranks, created {}\n", prov("clatter_version"),
+                     prov("git_revision"), io::read_attribute<std::int32_t>(file, "/provenance/run", "n_ranks"),
+                     run("created_utc"));
+  out += "  command:     " + run("command") + "\n";
+  const auto& sw = bank.sweep;
+  out += fmt::format("  sweep:       {} of {} tasks (proxy x field) in the bank, {} failed, {} missing\n",
+                     sw.tasks_total - sw.failed.size() - sw.missing.size(), sw.tasks_total, sw.failed.size(),
+                     sw.missing.size());
+  for (const auto& f : sw.failed) out += "    failed:  " + f + "\n";
+  for (const auto& m : sw.missing) out += "    missing: " + m + "\n";
+  return out;
+}
+
+std::string probe_csv(const ProbeRequest& r) {
+  const model::PanBank bank = io::read_pan_bank(r.bank_path);
+  const auto& h = bank.header;
+  const model::PanProxy* proxy = nullptr;
+  for (const auto& p : bank.proxies)
+    if (std::abs(p.b_m - r.proxy_bc_m[0]) < 1e-9 && std::abs(p.c_m - r.proxy_bc_m[1]) < 1e-9) proxy = &p;
+  if (!proxy) throw InputError(fmt::format("{}: no proxy (B, C) = ({}, {}) in the bank (see clatter-bank info)", r.bank_path,
+                                           r.proxy_bc_m[0], r.proxy_bc_m[1]));
+  if (kernels::pan::divisions_of(h.directions.size()) % 2 != 0 || h.directions.size() < 3)
+    throw InputError(fmt::format("{}: /bank/directions holds {} directions: not an octant triangulation with an even "
+                                 "number of divisions", r.bank_path, h.directions.size()));
+  if (r.field < 1 || r.field > 6) throw InputError(fmt::format("--field {}: the bank holds fields 1-6", r.field));
+  if (proxy->field(r.field).size() != h.directions.size())
+    throw InputError(fmt::format("{}: field {} was not solved for this proxy", r.bank_path, r.field));
+  if (!(r.scale > 0)) throw InputError(fmt::format("--scale {}: must be > 0", r.scale));
+  if (!(r.rate_hz >= 0)) throw InputError(fmt::format("--rate {}: must be >= 0 Hz (0: the bank's own rate)", r.rate_hz));
+  const double dist = std::hypot(r.point_m[0], r.point_m[1], r.point_m[2]);
+  if (!std::isfinite(dist))  // else NaN fails the bounding-sphere test below and is reported as inside
+    throw InputError(fmt::format("--point {},{},{}: coordinates must be finite", r.point_m[0], r.point_m[1], r.point_m[2]));
+  if (!(dist > h.a_m * r.scale))
+    throw InputError(fmt::format("--point {},{},{}: |x| = {} m is inside the proxy's bounding sphere (radius A beta = {} m)",
+                                 r.point_m[0], r.point_m[1], r.point_m[2], dist, h.a_m * r.scale));
+  const auto s = kernels::pan::evaluate({&h, proxy, r.field}, r.point_m, r.scale, r.rate_hz, r.interpolation);
+  std::string out = "t_s,p_Pa\n";
+  for (std::size_t n = 0; n < s.p.size(); ++n)
+    out += fmt::format("{:.9g},{:.9g}\n", s.t0_s + static_cast<double>(n) * s.dt_s, s.p[n]);
+  return out;
+}
+
+}  // namespace clatter::jobs

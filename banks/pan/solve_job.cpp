@@ -1,0 +1,227 @@
+#include "banks/pan/solve_job.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <memory>
+#include <optional>
+
+#include "core/errors.hpp"
+#include "core/interrupt.hpp"
+#include "core/stage_log.hpp"
+#include "io/h5.hpp"
+#include "io/provenance.hpp"
+#include "cli/command.hpp"
+#include "cli/run_options.hpp"
+#include "kernels/fdtd/engine.hpp"
+#include "kernels/fdtd/float_mode.hpp"
+#include "kernels/fdtd/operator.hpp"
+#include "kernels/fdtd/recorder.hpp"
+#include "mpi/cart.hpp"
+#include "mpi/comm.hpp"
+#include "mpi/halo.hpp"
+
+namespace clatter::jobs {
+
+namespace fdtd = kernels::fdtd;
+
+namespace {
+
+class Progress {
+ public:
+  Progress(double interval_s, long long total_steps, long long cells)
+      : interval_s_(interval_s), total_(total_steps), cells_(cells), start_(Clock::now()), last_(start_) {}
+  void step(long long done, int field, int n_fields) {
+    if (interval_s_ <= 0) return;
+    const auto now = Clock::now();
+    if (std::chrono::duration<double>(now - last_).count() < interval_s_) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double d = static_cast<double>(done), total = static_cast<double>(total_);
+    spdlog::info("solve: field {}/{}, step {}/{} ({:.1f} %), {:.3g} cell-updates/s, ETA {:.1f} s", field, n_fields,
+                 done, total_, 100.0 * d / total, static_cast<double>(cells_) * d / elapsed,
+                 elapsed * (total - d) / std::max(d, 1.0));
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  double interval_s_;
+  long long total_, cells_;
+  Clock::time_point start_, last_;
+};
+
+// Every rank of the solve agrees every kHealthCheckSteps steps (one small allreduce, far below a
+// step's cost) on whether to go on: a SIGTERM/SIGINT stops the solve (Interrupted), and a
+// non-finite pressure at any listener means the scheme blew up (TaskFailure), so nobody runs on
+// to the end of a worthless solve.
+constexpr int kHealthCheckSteps = 64;
+
+void check_health(MPI_Comm comm, const fdtd::Recorder& recorder, int n, int field) {
+  int local[2] = {interrupt_requested() ? 1 : 0, recorder.finite_at(n) ? 0 : 1};
+  int any[2] = {0, 0};
+  mpi::check(MPI_Allreduce(local, any, 2, MPI_INT, MPI_MAX, comm), "MPI_Allreduce");
+  if (any[1])
+    throw TaskFailure(fmt::format("field {}: the pressure at a listener is not finite at step {} (unstable: "
+                                  "check time.dt_s against the CFL limit and the geometry)", field, n));
+  if (any[0]) throw Interrupted(fmt::format("field {}: interrupted at step {}", field, n));
+}
+
+// The operator of this rank's block, built once for every field; logs and sums its storage.
+std::unique_ptr<fdtd::Operator> build_operator(MPI_Comm comm, const SolveSpec& spec, const fdtd::Box& owned,
+                                               SolveResult& result) {
+  Stage stage("setup");
+  fdtd::Problem problem = spec.problem;
+  problem.field = spec.fields.front();
+  auto op = std::make_unique<fdtd::Operator>(problem, owned);
+  const auto& k = op->counts();
+  spdlog::debug("solve: rank owns {} cells: {} bulk, {} cut, {} solid, {} PML; {:.1f} MiB", k.owned, k.bulk, k.cut,
+                k.solid, k.pml, static_cast<double>(k.bytes) / 1048576.0);
+  double bytes = static_cast<double>(k.bytes), total = 0;
+  mpi::check(MPI_Allreduce(&bytes, &total, 1, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
+  result.bytes = total;
+  const fdtd::Box in = spec.problem.grid.interior();
+  spdlog::info("solve: memory {:.1f} MiB: {:.1f} bytes per cell, {:.1f} per cell outside the PML", total / 1048576.0,
+               total / static_cast<double>(result.cells), total / static_cast<double>(in.cells()));
+  return op;
+}
+
+// One field: start, step with the health check and progress, gather the corners to rank 0.
+// Returns the series [listener][sample] on rank 0, nothing elsewhere.
+std::vector<float> solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fdtd::Engine& engine,
+                               Progress& progress) {
+  fdtd::Problem problem = spec.problem;
+  problem.field = spec.fields[fi];
+  const int steps = spec.n_samples - 1;
+  std::optional<fdtd::Recorder> recorder;
+  {
+    Stage stage("start");
+    engine.start(problem.field);
+    recorder.emplace(problem, spec.listeners_m, engine.layout(), spec.n_samples);
+  }
+  {
+    Stage loop("time loop");
+    for (int n = 0;; ++n) {
+      recorder->record(n, engine.pressure());
+      if (n % kHealthCheckSteps == 0 || n == steps) check_health(comm, *recorder, n, problem.field);
+      if (n == steps) break;
+      engine.step((n - spec.i_time_zero) * problem.dt_s);
+      progress.step(static_cast<long long>(fi) * steps + n + 1, static_cast<int>(fi) + 1,
+                    static_cast<int>(spec.fields.size()));
+    }
+  }
+  Stage stage("gather");
+  const auto all = mpi::gather(comm, recorder->pack());
+  if (mpi::rank(comm) != 0) return {};
+  return fdtd::interpolate_listeners(recorder->stencils(), spec.n_samples, all);
+}
+
+}  // namespace
+
+SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_interval_s) {
+  const fdtd::Grid& grid = spec.problem.grid;
+  std::optional<mpi::CartTopology> topo;
+  mpi::agree(comm, [&] { topo.emplace(comm, grid.n); });
+  const auto start = topo->local_start(), count = topo->local_count();
+  const fdtd::Box owned{start, {start[0] + count[0], start[1] + count[1], start[2] + count[2]}};
+  mpi::HaloExchange halo(*topo, fdtd::Layout(owned));
+  const long long cells = 1LL * grid.n[0] * grid.n[1] * grid.n[2];
+  const int steps = spec.n_samples - 1;
+  spdlog::info("solve: {} grid of {}x{}x{} cells ({:.3g} M) of {} mm, {} ranks as {}x{}x{}, {} steps of {:.4g} us, "
+               "Courant {:.3f}, {} field(s)",
+               grid.octant ? "octant" : "full", grid.n[0], grid.n[1], grid.n[2], static_cast<double>(cells) / 1e6, grid.dx_m * 1e3,
+               mpi::size(comm), topo->dims()[0], topo->dims()[1], topo->dims()[2], steps, spec.problem.dt_s * 1e6,
+               spec.problem.courant(), spec.fields.size());
+
+  const double cells_per_wavelength = spec.problem.c_m_s / (spec.band_edge_hz * grid.dx_m);
+  spdlog::info("solve: scheme {}, {:.3g} cells per shortest wavelength (psi's band edge {:.3g} kHz); predicted "
+               "dispersion error {:.2g} % over {:.3g} m to the farthest listener (bound {:.2g} %)",
+               fdtd::scheme_name(spec.problem.scheme), cells_per_wavelength, spec.band_edge_hz / 1e3,
+               100 * spec.predicted_error, spec.farthest_m, 100 * spec.max_dispersion_error);
+  if (spec.predicted_error > spec.max_dispersion_error)
+    spdlog::warn("solve: the predicted dispersion error {:.2g} % exceeds solver.max_dispersion_error = {:.2g} %: use a "
+                 "finer grid.dx_m, the me4 scheme, or a wider pulse.h_s (docs/fdtd.md, error budget)",
+                 100 * spec.predicted_error, 100 * spec.max_dispersion_error);
+
+  SolveResult result;
+  result.cells = cells;
+  const fdtd::FlushSubnormals flush;
+  Progress progress(progress_interval_s, static_cast<long long>(steps) * static_cast<long long>(spec.fields.size()), cells);
+  const auto t_begin = std::chrono::steady_clock::now();
+  // One operator and one engine for every field: the cut-cell geometry, the layer and the storage
+  // are built once.
+  const auto op = build_operator(comm, spec, owned, result);
+  fdtd::Engine engine(*op, halo);
+  for (std::size_t fi = 0; fi < spec.fields.size(); ++fi) {
+    auto series = solve_field(comm, spec, fi, engine, progress);
+    if (mpi::rank(comm) == 0) result.series.push_back(std::move(series));
+  }
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+  const double updates = static_cast<double>(cells) * steps * static_cast<double>(spec.fields.size());
+  result.cell_updates_per_s = updates / elapsed;
+  spdlog::info("solve: {:.3g} cell-updates in {:.3g} s: {:.3g} cell-updates/s", updates, elapsed,
+               result.cell_updates_per_s);
+  return result;
+}
+
+void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult& result, const io::Config& config,
+               const std::string& command, int n_ranks) {
+  const auto& p = spec.problem;
+  auto file = io::File::create(path);
+  io::write_header(file, kRawFormat, kRawFormatVersion);
+  io::create_group(file, "/solve");
+  const std::string g = "/solve";
+  io::write_attribute<double>(file, g, "c_m_s", p.c_m_s);
+  io::write_attribute<double>(file, g, "rho_kg_m3", p.rho_kg_m3);
+  io::write_attribute<double>(file, g, "h_s", p.h_s);
+  io::write_attribute<double>(file, g, "dt_s", p.dt_s);
+  io::write_attribute<double>(file, g, "dx_m", p.grid.dx_m);
+  io::write_attribute<double>(file, g, "t_first_s", -spec.i_time_zero * p.dt_s);
+  io::write_attribute<std::int32_t>(file, g, "i_time_zero", spec.i_time_zero);
+  io::write_attribute(file, g, "time_origin", std::string_view("t = 0 at the centre of psi(t; h); sample k is at "
+                                                               "t_first_s + k dt_s"));
+  io::write_attribute(file, g, "object", config.string("object.kind"));
+  io::write_attribute<double>(file, g, "a_m", p.body.a_m);
+  io::write_attribute<double>(file, g, "b_m", p.body.b_m);
+  io::write_attribute<double>(file, g, "c_m", p.body.c_m);
+  io::write_attribute<std::int32_t>(file, g, "octant", p.grid.octant ? 1 : 0);
+  io::write_attribute<std::int32_t>(file, g, "grid_cells", p.grid.n[0]);
+  io::write_attribute<std::int32_t>(file, g, "pml_cells", p.grid.pml);
+  io::write_attribute(file, g, "interpolation", std::string_view("tricubic Lagrange (fourth order)"));
+  io::write_attribute(file, g, "scheme", std::string_view(fdtd::scheme_name(p.scheme)));
+  const hsize_t np = spec.listeners_m.size(), ns = static_cast<hsize_t>(spec.n_samples);
+  std::vector<double> xyz;
+  for (const auto& x : spec.listeners_m) xyz.insert(xyz.end(), x.begin(), x.end());
+  io::write_dataset<double>(file, "/listeners/x_m", xyz, {np, 3}, "m");
+  for (std::size_t f = 0; f < spec.fields.size(); ++f) {
+    const int field = spec.fields[f];
+    const char* units = field == 0 ? "Pa/(m^3/s^2)" : field <= 3 ? "Pa/(m/s^2)" : "Pa/(rad/s^2)";
+    io::write_dataset<float>(file, "/fields/p" + std::to_string(field), result.series[f], {np, ns}, units);
+  }
+  io::write_provenance(file, command, config.to_toml(), n_ranks);
+  file.commit();
+}
+
+Command add_solve_command(CLI::App& parent) {
+  auto* app = parent.add_subcommand("solve", "FDTD solves around one rigid ellipsoid for the chosen rigid-body fields, "
+                                             "recorded at listener points");
+  auto options = std::make_shared<ConfigOptions>();
+  auto out = std::make_shared<std::string>("raw.h5");
+  add_config_options(*app, *options);
+  add_out_option(*app, *out, "output HDF5 file of raw time series");
+  return {app, [options, out](const RunContext& context) -> int {
+            const auto config = job_config(context.world, solve_schema(), *options);
+            if (!config) return kExitOk;
+            Stage stage("solve");
+            SolveSpec spec;
+            mpi::agree(context.world, [&] { spec = make_solve_spec(*config); });
+            const auto result = run_solve(context.world, spec, context.progress_interval_s);
+            if (context.is_root) {
+              Stage write("write");
+              write_raw(*out, spec, result, *config, context.command_line, context.n_ranks);
+              spdlog::info("solve: wrote {}", *out);
+            }
+            return kExitOk;
+          }};
+}
+
+}  // namespace clatter::jobs

@@ -1,0 +1,151 @@
+#include "banks/pan/solve_spec.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "banks/medium_keys.hpp"
+#include "kernels/fdtd/dispersion.hpp"
+#include "kernels/fdtd/listeners.hpp"
+
+namespace clatter::jobs {
+
+namespace fdtd = kernels::fdtd;
+
+const io::Schema& solve_schema() {
+  static const io::Schema schema = [] {
+    io::Schema s{"clatter-bank solve: FDTD pulse solves around one rigid ellipsoid", medium_and_pulse_keys()};
+    s.keys.insert(s.keys.end(), {
+          {"object.kind", std::string("ellipsoid"), "ellipsoid (rigid body, fields 1-6) or monopole (a point "
+                                                    "source at the origin, for absorbing-layer checks)",
+           {}, {"ellipsoid", "monopole"}},
+          {"object.a_m", 0.5, "semi-axis A along x [m]", {0.0, 100.0, true}},
+          {"object.b_m", 0.35, "semi-axis B along y [m]", {0.0, 100.0, true}},
+          {"object.c_m", 0.2, "semi-axis C along z [m]", {0.0, 100.0, true}},
+          {"grid.dx_m", 0.0065, "cell size [m]; the paper's 6.5 mm keeps the me4 scheme within 2 % at 1 m for "
+                                "h = 1e-4 s (docs/fdtd.md, error budget)", {0.0, 10.0, true}},
+          {"grid.half_width_m", 1.0, "half width of the domain inside the absorbing layer [m]", {0.0, 1e4, true}},
+          {"grid.pml_cells", std::int64_t{6}, "thickness of the perfectly matched layer [cells]; 6 reflect <= -70 dB", {0, 256}},
+          {"grid.octant", true, "solve x, y, z >= 0 only, with mirror planes (8x less work)"},
+          {"time.dt_s", 1.0 / 96000.0, "time step [s]; CFL limit dx / (c sqrt 3)", {0.0, 1.0, true}},
+          {"time.duration_s", 0.006, "recorded time after t = 0 (the centre of psi) [s]", {0.0, 100.0, true}},
+          {"solve.fields", io::RealList{1, 2, 3, 4, 5, 6},
+           "rigid-body fields: 1-3 translation along x, y, z; 4-6 rotation about x, y, z", {1, 6}},
+          {"listeners.points_m",
+           io::RealList{0.8, 0, 0, 0, 0.8, 0, 0, 0, 0.8, 0.6, 0.5, 0.3, -0.6, 0.5, -0.3},
+           "listener positions [m], ellipsoid centred on the origin", {-1e4, 1e4}, {}, 3},
+          {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
+          {"solver.pml_reflection", 1e-5, "design reflection of the PML grading at normal incidence", {0.0, 1.0, true}},
+          {"solver.scheme", std::string("me4"), "update away from the body: me4 (fourth order in space and time, "
+                                                "25 points) or srl (the 7-point leapfrog, second order)",
+           {}, {"me4", "srl"}},
+          {"solver.max_dispersion_error", 0.02, "warn when the predicted dispersion error of the pulse at the farthest "
+                                                "listener exceeds this (relative L2)", {0.0, 10.0, true}},
+    });
+    return s;
+  }();
+  return schema;
+}
+
+SolveParams parse_solve_params(const io::Config& config) {
+  SolveParams p;
+  p.medium_c_m_s = config.real("medium.c_m_s");
+  p.medium_rho_kg_m3 = config.real("medium.rho_kg_m3");
+  p.pulse_h_s = config.real("pulse.h_s");
+  p.object_kind = config.string("object.kind");
+  p.object_a_m = config.real("object.a_m");
+  p.object_b_m = config.real("object.b_m");
+  p.object_c_m = config.real("object.c_m");
+  p.grid_dx_m = config.real("grid.dx_m");
+  p.grid_half_width_m = config.real("grid.half_width_m");
+  p.grid_pml_cells = static_cast<int>(config.integer("grid.pml_cells"));
+  p.grid_octant = config.boolean("grid.octant");
+  p.time_dt_s = config.real("time.dt_s");
+  p.time_duration_s = config.real("time.duration_s");
+  p.solve_fields = config.reals("solve.fields");
+  const auto& pts = config.reals("listeners.points_m");
+  for (std::size_t i = 0; i + 2 < pts.size(); i += 3) p.listeners_points_m.push_back({pts[i], pts[i + 1], pts[i + 2]});
+  p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
+  p.solver_pml_reflection = config.real("solver.pml_reflection");
+  p.solver_scheme = config.string("solver.scheme");
+  p.solver_max_dispersion_error = config.real("solver.max_dispersion_error");
+  return p;
+}
+
+SolveSpec make_solve_spec(const io::Config& config) { return make_solve_spec(parse_solve_params(config)); }
+
+SolveSpec make_solve_spec(const SolveParams& in) {
+  SolveSpec spec;
+  fdtd::Problem& p = spec.problem;
+  p.c_m_s = in.medium_c_m_s;
+  p.rho_kg_m3 = in.medium_rho_kg_m3;
+  p.h_s = in.pulse_h_s;
+  p.dt_s = in.time_dt_s;
+  p.cut_cell_samples = in.solver_cut_cell_samples;
+  p.pml_reflection = in.solver_pml_reflection;
+  const auto scheme = fdtd::scheme_from_name(in.solver_scheme);
+  if (!scheme)
+    throw InputError(fmt::format("config: key 'solver.scheme' = \"{}\": must be one of me4, srl", in.solver_scheme));
+  p.scheme = *scheme;
+  const double dx = in.grid_dx_m;
+  const bool monopole = in.object_kind == "monopole";
+  p.body = {in.object_a_m, in.object_b_m, in.object_c_m};
+
+  // Both schemes' limit (docs/fdtd.md): srl's from the checkerboard mode, me4's from
+  // 4 lambda^2 - 3 lambda^4 <= 1 at the same mode.
+  const double limit = dx / (p.c_m_s * std::sqrt(3.0));
+  if (p.dt_s > limit)
+    throw InputError(fmt::format("config: key 'time.dt_s' = {}: violates the CFL limit dx / (c sqrt 3) = {:.6g} s "
+                                 "(grid.dx_m = {}, medium.c_m_s = {})",
+                                 p.dt_s, limit, dx, p.c_m_s));
+  const double half = in.grid_half_width_m;
+  const int n_half = static_cast<int>(std::ceil(half / dx - 1e-9));
+  const int pml = in.grid_pml_cells;
+  p.grid.dx_m = dx;
+  p.grid.pml = pml;
+  p.grid.octant = in.grid_octant;
+  const int n = p.grid.octant ? n_half + pml : 2 * (n_half + pml);
+  p.grid.n = {n, n, n};
+  if (!monopole) {
+    const std::array<const char*, 3> keys{"object.a_m", "object.b_m", "object.c_m"};
+    const std::array<double, 3> r{p.body.a_m, p.body.b_m, p.body.c_m};
+    for (int a = 0; a < 3; ++a)
+      if (r[a] + dx > n_half * dx)
+        throw InputError(fmt::format("config: key '{}' = {}: the ellipsoid must lie inside the domain with a cell to "
+                                     "spare (grid.half_width_m = {} gives {} cells of {} m)",
+                                     keys[a], r[a], half, n_half, dx));
+    for (double f : in.solve_fields) {
+      if (f != std::floor(f)) throw InputError(fmt::format("config: key 'solve.fields' has {}: not a field index 1-6", f));
+      spec.fields.push_back(static_cast<int>(f));
+    }
+    if (spec.fields.empty()) throw InputError("config: key 'solve.fields' is empty: choose fields from 1-6");
+  } else {
+    spec.fields = {0};
+  }
+
+  if (in.listeners_points_m.empty()) throw InputError("config: key 'listeners.points_m' is empty: give at least one point");
+  spec.listeners_m = in.listeners_points_m;
+  for (std::size_t l = 0; l < spec.listeners_m.size(); ++l) {
+    fdtd::Problem probe = p;
+    probe.field = monopole ? 0 : 1;
+    const auto& x = spec.listeners_m[l];
+    if (auto why = fdtd::listener_problem(probe, x))
+      throw InputError(fmt::format("config: key 'listeners.points_m' point {} = [{}, {}, {}]: {}", l + 1, x[0], x[1],
+                                   x[2], *why));
+  }
+  // The error budget's dispersion term at the farthest listener, over the distance from the body's
+  // bounding sphere (where the body's sound starts; the whole distance for the monopole).
+  const double body_radius = monopole ? 0.0 : std::max({p.body.a_m, p.body.b_m, p.body.c_m});
+  for (const auto& x : spec.listeners_m)
+    spec.farthest_m = std::max(spec.farthest_m, std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - body_radius);
+  spec.band_edge_hz = fdtd::pulse_band_edge_hz(p.h_s);
+  spec.predicted_error = fdtd::worst_dispersion_error(p.scheme, p.courant(), dx, p.c_m_s, p.h_s, spec.farthest_m);
+  spec.max_dispersion_error = in.solver_max_dispersion_error;
+  spec.i_time_zero = static_cast<int>(std::ceil(2.0 * p.h_s / p.dt_s - 1e-9));
+  spec.n_samples = spec.i_time_zero + static_cast<int>(std::ceil(in.time_duration_s / p.dt_s)) + 1;
+  return spec;
+}
+
+}  // namespace clatter::jobs
