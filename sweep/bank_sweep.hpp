@@ -7,6 +7,7 @@
 #include <mpi.h>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,20 @@ struct BankSweep {
   TaskRunner run_task;              // unused by a merge alone
   std::function<MergedBank(const std::string& results_dir)> merge;
 };
+
+// The merge of a kind whose bank model `Bank` carries its SweepStatus as `bank.sweep`: `build`
+// assembles the model from a results folder, `write` writes it to OUT.
+template <class Bank>
+std::function<MergedBank(const std::string&)> bank_merge(
+    std::function<Bank(const std::string& results_dir)> build,
+    std::function<void(const std::string& out, const Bank& bank, const std::string& command, int n_ranks)> write) {
+  return [build = std::move(build), write = std::move(write)](const std::string& results_dir) {
+    auto bank = std::make_shared<const Bank>(build(results_dir));
+    return MergedBank{bank->sweep, [bank, write](const std::string& out, const std::string& command, int n_ranks) {
+                        write(out, *bank, command, n_ranks);
+                      }};
+  };
+}
 
 // The --results, --ranks-per-task, --resume, --slice, --keep-results and --force options.
 void add_sweep_options(CLI::App& app, SweepOptions& options);

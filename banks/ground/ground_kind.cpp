@@ -41,12 +41,12 @@ class GroundKind final : public BankKind {
                                 spec->c0_m_s);
     for (const auto& t : *tasks) sweep.task_names.push_back(t.name);
     sweep.run_task = [spec, tasks](MPI_Comm group, std::size_t t) { return run_ground_task(group, *spec, (*tasks)[t]); };
-    sweep.merge = [spec, config_toml = sweep.manifest.config_toml](const std::string& results_dir) {
-      auto bank = std::make_shared<const model::GroundBank>(merge_ground_results(*spec, results_dir, config_toml));
-      return MergedBank{bank->sweep, [bank, config_toml](const std::string& out, const std::string& command, int n_ranks) {
-                          io::write_ground_bank(out, *bank, command, config_toml, n_ranks);
-                        }};
-    };
+    const std::string& toml = sweep.manifest.config_toml;
+    sweep.merge = bank_merge<model::GroundBank>(
+        [spec, toml](const std::string& results_dir) { return merge_ground_results(*spec, results_dir, toml); },
+        [toml](const std::string& out, const model::GroundBank& bank, const std::string& command, int n_ranks) {
+          io::write_ground_bank(out, bank, command, toml, n_ranks);
+        });
     return sweep;
   }
 

@@ -42,12 +42,12 @@ class ModalKind final : public BankKind {
                                 spec->header.solver_libraries);
     for (const auto& t : *tasks) sweep.task_names.push_back(t.name);
     sweep.run_task = [spec, tasks](MPI_Comm group, std::size_t t) { return run_modal_task(group, *spec, (*tasks)[t]); };
-    sweep.merge = [spec, config_toml = sweep.manifest.config_toml](const std::string& results_dir) {
-      auto bank = std::make_shared<const model::ModalBank>(merge_modal_results(*spec, results_dir, config_toml));
-      return MergedBank{bank->sweep, [bank, config_toml](const std::string& out, const std::string& command, int n_ranks) {
-                          io::write_modal_bank(out, *bank, command, config_toml, n_ranks);
-                        }};
-    };
+    const std::string& toml = sweep.manifest.config_toml;
+    sweep.merge = bank_merge<model::ModalBank>(
+        [spec, toml](const std::string& results_dir) { return merge_modal_results(*spec, results_dir, toml); },
+        [toml](const std::string& out, const model::ModalBank& bank, const std::string& command, int n_ranks) {
+          io::write_modal_bank(out, bank, command, toml, n_ranks);
+        });
     return sweep;
   }
 

@@ -40,12 +40,12 @@ class PanKind final : public BankKind {
     sweep.run_task = [spec, tasks, progress_s = context.progress_interval_s](MPI_Comm group, std::size_t t) {
       return run_pan_task(group, *spec, (*tasks)[t], progress_s);
     };
-    sweep.merge = [spec, config_toml = sweep.manifest.config_toml](const std::string& results_dir) {
-      auto bank = std::make_shared<const model::PanBank>(merge_pan_results(*spec, results_dir, config_toml));
-      return MergedBank{bank->sweep, [bank, config_toml](const std::string& out, const std::string& command, int n_ranks) {
-                          io::write_pan_bank(out, *bank, command, config_toml, n_ranks);
-                        }};
-    };
+    const std::string& toml = sweep.manifest.config_toml;
+    sweep.merge = bank_merge<model::PanBank>(
+        [spec, toml](const std::string& results_dir) { return merge_pan_results(*spec, results_dir, toml); },
+        [toml](const std::string& out, const model::PanBank& bank, const std::string& command, int n_ranks) {
+          io::write_pan_bank(out, bank, command, toml, n_ranks);
+        });
     return sweep;
   }
 
