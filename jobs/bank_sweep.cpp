@@ -10,6 +10,7 @@
 #include "core/stage_log.hpp"
 #include "io/sweep_files.hpp"
 #include "jobs/output_guard.hpp"
+#include "mpi/collectives.hpp"
 #include "mpi/comm.hpp"
 
 namespace fs = std::filesystem;
@@ -51,8 +52,7 @@ int merge_and_write(MPI_Comm world, const SweepLocks& locks, const BankSweep& sw
     if (!s.missing.empty()) spdlog::warn("merge: {} task(s) missing, e.g. {}", s.missing.size(), s.missing.front());
     if (!s.complete()) code = kExitTasksFailed;
   });
-  mpi::check(MPI_Bcast(&code, 1, MPI_INT, 0, world), "MPI_Bcast");
-  return code;
+  return mpi::broadcast(world, code);
 }
 
 }  // namespace
