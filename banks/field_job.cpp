@@ -16,6 +16,7 @@
 #include "cli/run_options.hpp"
 #include "kernels/pulse.hpp"
 #include "mpi/cart.hpp"
+#include "mpi/collectives.hpp"
 #include "mpi/comm.hpp"
 
 namespace clatter::jobs {
@@ -72,8 +73,7 @@ void run_field(MPI_Comm comm, const io::Config& config, const std::string& out_p
           local_peak_pa = std::max(local_peak_pa, std::abs(p));
         }
   }
-  double peak_pa = 0;
-  mpi::check(MPI_Allreduce(&local_peak_pa, &peak_pa, 1, MPI_DOUBLE, MPI_MAX, comm), "MPI_Allreduce");
+  const double peak_pa = mpi::all_reduce_max(comm, local_peak_pa);
   // The shell's crest travels at r = c t, where psi(0) = 7/9: the peak the grid should come close to.
   const double crest_r_m = c_m_s * t_s;
   if (crest_r_m > 0)

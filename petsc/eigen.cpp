@@ -11,7 +11,7 @@
 #include <type_traits>
 
 #include "core/stage_log.hpp"
-#include "mpi/comm.hpp"
+#include "mpi/collectives.hpp"
 #include "petsc/error.hpp"
 
 namespace clatter::petsc {
@@ -244,9 +244,7 @@ void count_check(const Matrix& K, const Matrix& M, const SliceSettings& s, std::
 double resident_memory_max_mb(MPI_Comm comm) {
   PetscLogDouble bytes = 0;
   check(PetscMemoryGetCurrentUsage(&bytes), "PetscMemoryGetCurrentUsage");
-  double mb = bytes / 1e6, max_mb = 0;
-  mpi::check(MPI_Allreduce(&mb, &max_mb, 1, MPI_DOUBLE, MPI_MAX, comm), "MPI_Allreduce");
-  return max_mb;
+  return mpi::all_reduce_max(comm, bytes / 1e6);
 }
 
 }  // namespace

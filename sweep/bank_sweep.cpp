@@ -9,6 +9,7 @@
 #include "core/interrupt.hpp"
 #include "core/stage_log.hpp"
 #include "io/sweep_files.hpp"
+#include "mpi/collectives.hpp"
 #include "sweep/output_guard.hpp"
 #include "mpi/comm.hpp"
 
@@ -36,8 +37,7 @@ int merge_and_write(MPI_Comm world, const SweepLocks& locks, const BankSweep& sw
     if (!s.missing.empty()) spdlog::warn("merge: {} task(s) missing, e.g. {}", s.missing.size(), s.missing.front());
     if (!s.complete()) code = kExitTasksFailed;
   });
-  mpi::check(MPI_Bcast(&code, 1, MPI_INT, 0, world), "MPI_Bcast");
-  return code;
+  return mpi::broadcast(world, code);
 }
 
 }  // namespace

@@ -4,19 +4,23 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <optional>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/stage_log.hpp"
 #include "io/text_file.hpp"
 #include "cli/run_options.hpp"
+#include "mpi/collectives.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/groups.hpp"
+#include "mpi/interrupt.hpp"
+#include "mpi/shared_counter.hpp"
 
 namespace fs = std::filesystem;
 
@@ -63,39 +67,8 @@ int remove_stale_temporaries(const std::string& dir, const std::vector<std::stri
   return removed;
 }
 
-// A counter on world rank 0 that group leaders advance with one atomic fetch-and-add.
-class SharedCounters {
- public:
-  enum Slot { kNext = 0, kDone = 1, kFailed = 2, kSlots = 3 };
-  explicit SharedCounters(MPI_Comm world) {
-    const bool root = mpi::rank(world) == 0;
-    const MPI_Aint bytes = root ? static_cast<MPI_Aint>(kSlots * sizeof(long long)) : 0;
-    mpi::check(MPI_Win_allocate(bytes, sizeof(long long), MPI_INFO_NULL, world, &base_, &win_), "MPI_Win_allocate");
-    if (root) {
-      MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, win_);
-      for (int i = 0; i < kSlots; ++i) base_[i] = 0;
-      MPI_Win_unlock(0, win_);
-    }
-    mpi::check(MPI_Barrier(world), "MPI_Barrier");
-    mpi::check(MPI_Win_lock_all(0, win_), "MPI_Win_lock_all");
-  }
-  ~SharedCounters() {
-    MPI_Win_unlock_all(win_);
-    MPI_Win_free(&win_);
-  }
-  SharedCounters(const SharedCounters&) = delete;
-  SharedCounters& operator=(const SharedCounters&) = delete;
-  long long add(Slot slot, long long value) {
-    long long before = 0;
-    mpi::check(MPI_Fetch_and_op(&value, &before, MPI_LONG_LONG, 0, slot, MPI_SUM, win_), "MPI_Fetch_and_op");
-    mpi::check(MPI_Win_flush(0, win_), "MPI_Win_flush");
-    return before;
-  }
-
- private:
-  long long* base_ = nullptr;
-  MPI_Win win_ = MPI_WIN_NULL;
-};
+// The slots of the sweep's mpi::SharedCounter, advanced by group leaders.
+enum CounterSlot { kNext = 0, kDone = 1, kFailed = 2, kSlots = 3 };
 
 // The tasks of this slice of the sweep: t with t % slice_count == slice_index.
 std::vector<std::size_t> slice_tasks(std::size_t n_tasks, Slice s) {
@@ -108,13 +81,13 @@ std::vector<std::size_t> slice_tasks(std::size_t n_tasks, Slice s) {
 }
 
 // On rank 0: prepares the folder, counts the slice's verified finished tasks into `done_before`
-// and returns the others ("t1 t2 ... "), the tasks still to run.
-std::string scan_results(const std::vector<std::string>& names, const std::vector<std::size_t>& slice,
-                         const SweepManifest& manifest, const SweepOptions& o, std::size_t& done_before) {
+// and returns the others, the tasks still to run.
+std::vector<std::uint64_t> scan_results(const std::vector<std::string>& names, const std::vector<std::size_t>& slice,
+                                        const SweepManifest& manifest, const SweepOptions& o, std::size_t& done_before) {
   Stage stage("scan results");
   const std::string results_dir = o.results_dir();
   prepare_results_dir(results_dir, manifest);
-  std::string pending_text;
+  std::vector<std::uint64_t> pending;
   std::size_t present = 0;
   const std::string id = manifest.id();  // hashed once, not per task
   for (std::size_t t : slice) {
@@ -129,7 +102,7 @@ std::string scan_results(const std::vector<std::string>& names, const std::vecto
     if (o.resume && r.state == io::TaskState::failed)
       spdlog::info("sweep: retrying {} (failed before: {})", names[t], r.reason);
     if (o.resume && r.state == io::TaskState::invalid) spdlog::warn("sweep: redoing {}: {}", names[t], r.reason);
-    pending_text += std::to_string(t) + " ";
+    pending.push_back(t);
   }
   if (present > 0 && !o.resume)
     throw InputError(fmt::format("--results {}: already holds {} of this sweep's task files; add --resume to go on "
@@ -137,29 +110,22 @@ std::string scan_results(const std::vector<std::string>& names, const std::vecto
                                  results_dir, present));
   if (const int n = remove_stale_temporaries(results_dir, names, slice); n > 0)
     spdlog::info("sweep: removed {} temporary file(s) of an earlier run that was killed", n);
-  return pending_text;
+  return pending;
 }
 
 // Rank 0 looks at the folder (its lock still held); everybody gets the list of pending tasks and `done_before`.
 std::vector<std::size_t> find_pending(MPI_Comm world, const SweepLocks& locks, const std::vector<std::string>& names,
                                       const std::vector<std::size_t>& slice, const SweepManifest& manifest,
                                       const SweepOptions& o, std::size_t& done_before) {
-  std::string pending_text;
+  std::vector<std::uint64_t> pending;
   mpi::agree(world, [&] {
     if (mpi::rank(world) != 0) return;
     locks.check_held();
-    pending_text = scan_results(names, slice, manifest, o, done_before);
+    pending = scan_results(names, slice, manifest, o, done_before);
   });
-  pending_text = mpi::broadcast(world, pending_text);
-  std::vector<std::size_t> pending;
-  {
-    std::istringstream in(pending_text);
-    for (std::size_t t; in >> t;) pending.push_back(t);
-  }
-  long long skipped = static_cast<long long>(done_before);
-  mpi::check(MPI_Bcast(&skipped, 1, MPI_LONG_LONG, 0, world), "MPI_Bcast");
-  done_before = static_cast<std::size_t>(skipped);
-  return pending;
+  pending = mpi::broadcast(world, std::move(pending));
+  done_before = static_cast<std::size_t>(mpi::broadcast(world, static_cast<std::uint64_t>(done_before)));
+  return {pending.begin(), pending.end()};
 }
 
 // What the per-task bookkeeping of one run needs to know.
@@ -178,14 +144,13 @@ struct NextTask {
 };
 
 // The whole group agrees to stop, then the leader takes the next task for it.
-NextTask take_next_task(const mpi::TaskGroups& groups, SharedCounters& counters) {
+NextTask take_next_task(const mpi::TaskGroups& groups, mpi::SharedCounter& counters) {
   MPI_Comm group = groups.group();
-  int stop_local = interrupt_requested() ? 1 : 0, stop = 0;
-  mpi::check(MPI_Allreduce(&stop_local, &stop, 1, MPI_INT, MPI_MAX, group), "MPI_Allreduce");
+  const bool stop = mpi::interrupt_seen(group);
   long long next = -1;
-  if (groups.is_leader() && !stop) next = counters.add(SharedCounters::kNext, 1);
-  mpi::check(MPI_Bcast(&next, 1, MPI_LONG_LONG, 0, group), "MPI_Bcast");
-  return {stop != 0, next};
+  if (groups.is_leader() && !stop) next = counters.add(kNext, 1);
+  next = mpi::broadcast(group, next);
+  return {stop, next};
 }
 
 struct TaskOutcome {
@@ -237,16 +202,16 @@ std::string record_task(const SweepRun& run, std::size_t task, const TaskOutcome
 
 // On the group leader: records the task, counts it (here and on the shared counters) and logs the
 // progress of the whole run.
-void finish_task(SharedCounters& counters, const SweepRun& run, std::size_t task, const TaskOutcome& outcome,
+void finish_task(mpi::SharedCounter& counters, const SweepRun& run, std::size_t task, const TaskOutcome& outcome,
                  std::chrono::steady_clock::time_point task_start, SweepReport& report) {
   const std::string failure = record_task(run, task, outcome);
   if (!failure.empty()) {
     ++report.failed;
-    counters.add(SharedCounters::kFailed, 1);
+    counters.add(kFailed, 1);
   } else {
     ++report.done_now;
   }
-  const long long finished = counters.add(SharedCounters::kDone, 1) + 1;
+  const long long finished = counters.add(kDone, 1) + 1;
   const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - run.start).count();
   const double per_hour = 3600.0 * static_cast<double>(finished) / std::max(elapsed_s, 1e-9);
   const double left = static_cast<double>(static_cast<long long>(run.n_pending) - finished);
@@ -254,11 +219,11 @@ void finish_task(SharedCounters& counters, const SweepRun& run, std::size_t task
                failure.empty() ? "done" : "FAILED",
                std::chrono::duration<double>(std::chrono::steady_clock::now() - task_start).count(),
                finished + static_cast<long long>(report.done_before), run.n_slice,
-               counters.add(SharedCounters::kFailed, 0), per_hour, clock_text(3600.0 * left / std::max(per_hour, 1e-9)));
+               counters.add(kFailed, 0), per_hour, clock_text(3600.0 * left / std::max(per_hour, 1e-9)));
 }
 
 // Every group takes pending tasks and runs them until none is left or it is interrupted.
-void hand_out_tasks(const mpi::TaskGroups& groups, SharedCounters& counters, const TaskRunner& runner,
+void hand_out_tasks(const mpi::TaskGroups& groups, mpi::SharedCounter& counters, const TaskRunner& runner,
                     const std::vector<std::size_t>& pending, const SweepRun& run, SweepReport& report) {
   for (;;) {
     const NextTask next = take_next_task(groups, counters);
@@ -280,15 +245,12 @@ void hand_out_tasks(const mpi::TaskGroups& groups, SharedCounters& counters, con
 
 // Totals over the groups (counted on leaders only).
 void reduce_over_groups(MPI_Comm world, bool leader, SweepReport& report) {
-  long long local[3] = {static_cast<long long>(report.done_now), static_cast<long long>(report.failed),
-                        report.interrupted ? 1 : 0};
-  if (!leader) local[0] = local[1] = 0;
-  long long sum[3] = {0, 0, 0}, any_interrupt = 0;
-  mpi::check(MPI_Allreduce(local, sum, 2, MPI_LONG_LONG, MPI_SUM, world), "MPI_Allreduce");
-  mpi::check(MPI_Allreduce(&local[2], &any_interrupt, 1, MPI_LONG_LONG, MPI_MAX, world), "MPI_Allreduce");
+  const std::array<long long, 2> local = {leader ? static_cast<long long>(report.done_now) : 0,
+                                         leader ? static_cast<long long>(report.failed) : 0};
+  const std::array<long long, 2> sum = mpi::all_reduce_sum(world, local);
   report.done_now = static_cast<std::size_t>(sum[0]);
   report.failed = static_cast<std::size_t>(sum[1]);
-  report.interrupted = any_interrupt != 0;
+  report.interrupted = mpi::any(world, report.interrupted);
 }
 
 }  // namespace
@@ -362,7 +324,7 @@ SweepReport run_sweep(MPI_Comm world, const SweepLocks& locks, const SweepManife
                pending.size(), slice.size(), names.size(), s.index, s.count, report.done_before,
                groups.n_groups(), o.ranks_per_task, results_dir);
   // Lives until after the reduction: freeing its window is collective over the world.
-  SharedCounters counters(world);
+  mpi::SharedCounter counters(world, kSlots);
   const SweepRun run{names, results_dir, id, pending.size(), slice.size(), std::chrono::steady_clock::now()};
   hand_out_tasks(groups, counters, runner, pending, run, report);
   reduce_over_groups(world, groups.is_leader(), report);

@@ -8,24 +8,17 @@
 #include <numbers>
 
 #include "core/errors.hpp"
-#include "core/interrupt.hpp"
 #include "core/stage_log.hpp"
 #include "io/ground_bank.hpp"
 #include "io/sweep_files.hpp"
 #include "kernels/ground/lamb.hpp"
 #include "mpi/comm.hpp"
+#include "mpi/interrupt.hpp"
 
 namespace clatter::jobs {
 namespace {
 
 double degrees(double rad) { return rad * 180 / std::numbers::pi; }
-
-// Every rank of the group stops at the same point, or none does.
-void poll_interrupt(MPI_Comm group, const std::string& where) {
-  int local = interrupt_requested() ? 1 : 0, any = 0;
-  mpi::check(MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, group), "MPI_Allreduce");
-  if (any) throw Interrupted("interrupted before " + where);
-}
 
 // The kernel's refusals and numerical failures are the task's, recorded by the sweep; the row is
 // the same on every rank, so they are too.
@@ -66,7 +59,7 @@ std::vector<model::GroundSeries> build_ground_row(MPI_Comm group, const GroundSp
   std::vector<model::GroundSeries> row;
   Stage stage("pressure");
   for (double eta : spec.eta) {
-    poll_interrupt(group, fmt::format("the pressure at eta = {}", eta));
+    mpi::poll_interrupt(group, fmt::format("the pressure at eta = {}", eta));
     auto p = or_fail(fmt::format("the pressure at eta = {}", eta), [&] {
       return kernels::ground::pressure_antiderivative(volume, eta, w.t_hat_start(eta), eta / spec.samples_per_eta,
                                                       w.t_hat_end(eta));
@@ -81,7 +74,7 @@ std::vector<model::GroundSeries> build_ground_row(MPI_Comm group, const GroundSp
 
 TaskWriter run_ground_task(MPI_Comm group, const GroundSpec& spec, const GroundTask& task) {
   const auto t0 = std::chrono::steady_clock::now();
-  poll_interrupt(group, "the volume series");
+  mpi::poll_interrupt(group, "the volume series");
   auto row = build_ground_row(group, spec, task);
   if (mpi::rank(group) != 0) return {};
   std::size_t samples = 0;

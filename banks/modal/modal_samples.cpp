@@ -21,6 +21,7 @@
 #include "banks/modal/modal_spec.hpp"
 #include "cli/run_options.hpp"
 #include "kernels/modal/patch_sampling.hpp"
+#include "mpi/collectives.hpp"
 #include "mpi/comm.hpp"
 #include "petsc/session.hpp"
 
@@ -56,7 +57,7 @@ kernels::modal::FeatureBatch feature_batch(MPI_Comm world, const ModalSpec& spec
   return [world, &spec, n](const std::vector<kernels::modal::Axes>& points) {
     const int rank = mpi::rank(world), size = mpi::size(world);
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<double> mine(points.size() * static_cast<std::size_t>(n), 0.0), all(mine.size());
+    std::vector<double> mine(points.size() * static_cast<std::size_t>(n), 0.0);
     mpi::agree(world, [&] {
       for (std::size_t i = static_cast<std::size_t>(rank); i < points.size(); i += static_cast<std::size_t>(size)) {
         std::vector<double> r;
@@ -70,8 +71,7 @@ kernels::modal::FeatureBatch feature_batch(MPI_Comm world, const ModalSpec& spec
       }
     });
     // Each value comes from one rank, the others add zeros: the sum is exact.
-    mpi::check(MPI_Allreduce(mine.data(), all.data(), static_cast<int>(all.size()), MPI_DOUBLE, MPI_SUM, world),
-               "MPI_Allreduce");
+    const std::vector<double> all = mpi::all_reduce_sum(world, mine);
     spdlog::info("modal-samples: {} ellipsoids solved in {:.1f} s", points.size(),
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     std::vector<std::vector<double>> out;

@@ -7,10 +7,9 @@
 #include <cmath>
 
 #include "core/errors.hpp"
-#include "core/interrupt.hpp"
 #include "core/stage_log.hpp"
 #include "kernels/modal/mode_basis.hpp"
-#include "mpi/comm.hpp"
+#include "mpi/interrupt.hpp"
 #include "petsc/error.hpp"
 #include "petsc/subspace.hpp"
 
@@ -94,12 +93,6 @@ void apply_basis_rule(const FemModel& m, const std::vector<petsc::Vector>& refer
 
 }  // namespace
 
-void poll_interrupt(MPI_Comm comm, const char* where) {
-  int local = interrupt_requested() ? 1 : 0, any = 0;
-  mpi::check(MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm), "MPI_Allreduce");
-  if (any) throw Interrupted(fmt::format("interrupted before {}", where));
-}
-
 double first_elastic_lambda(const FemModel& m, double guess, const ModalSolveSettings& s) {
   double sigma = guess;
   PetscInt below = petsc::eigenvalues_below(m.K, m.M, sigma);
@@ -113,7 +106,7 @@ double first_elastic_lambda(const FemModel& m, double guess, const ModalSolveSet
     sigma = hi;
     hi *= 4;
   }
-  poll_interrupt(m.layout.comm(), "the first-mode solve");
+  mpi::poll_interrupt(m.layout.comm(), "the first-mode solve");
   const auto solution = solve_or_fail(m, slice(s, sigma, hi));
   if (solution.lambdas.empty()) throw TaskFailure(fmt::format("no mode found in [{:.6g}, {:.6g}] (rad/s)^2", sigma, hi));
   return solution.lambdas.front();
@@ -124,7 +117,7 @@ ModeSet solve_modes(const FemModel& m, const std::vector<petsc::Vector>& referen
   const double k2 = s.f_max_multiple * s.f_max_multiple;
   double lo = 0.25 * lambda1_estimate, hi = 1.1 * k2 * lambda1_estimate;
   for (int attempt = 0;; ++attempt) {
-    poll_interrupt(m.layout.comm(), "the eigen-solve");
+    mpi::poll_interrupt(m.layout.comm(), "the eigen-solve");
     petsc::EigenSolution solution = solve_or_fail(m, slice(s, lo, hi));
     if (solution.below_lo != kRigidMotions)
       throw TaskFailure(fmt::format("{} eigenvalues below {:.6g} (rad/s)^2, a quarter of the first mode's estimate: "

@@ -11,10 +11,6 @@
 
 namespace clatter::jobs {
 
-// Collective: throws Interrupted on every rank of `comm` if any has been asked to stop (SIGTERM),
-// so a long stage leaves at a point where every rank is.
-void poll_interrupt(MPI_Comm comm, const char* where);
-
 struct ModalSolveSettings {
   double f_max_multiple = 4;
   double cluster_gap = 5e-3;      // relative, in frequency

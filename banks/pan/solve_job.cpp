@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <array>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "kernels/fdtd/operator.hpp"
 #include "kernels/fdtd/recorder.hpp"
 #include "mpi/cart.hpp"
+#include "mpi/collectives.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/halo.hpp"
 
@@ -57,9 +59,9 @@ class Progress {
 constexpr int kHealthCheckSteps = 64;
 
 void check_health(MPI_Comm comm, const fdtd::Recorder& recorder, int n, int field) {
-  int local[2] = {interrupt_requested() ? 1 : 0, recorder.finite_at(n) ? 0 : 1};
-  int any[2] = {0, 0};
-  mpi::check(MPI_Allreduce(local, any, 2, MPI_INT, MPI_MAX, comm), "MPI_Allreduce");
+  // Both flags in one reduction: this runs inside the time loop.
+  const std::array<int, 2> any =
+      mpi::all_reduce_max(comm, std::array<int, 2>{interrupt_requested() ? 1 : 0, recorder.finite_at(n) ? 0 : 1});
   if (any[1])
     throw TaskFailure(fmt::format("field {}: the pressure at a listener is not finite at step {} (unstable: "
                                   "check time.dt_s against the CFL limit and the geometry)", field, n));
@@ -76,8 +78,7 @@ std::unique_ptr<fdtd::Operator> build_operator(MPI_Comm comm, const SolveSpec& s
   const auto& k = op->counts();
   spdlog::debug("solve: rank owns {} cells: {} bulk, {} cut, {} solid, {} PML; {:.1f} MiB", k.owned, k.bulk, k.cut,
                 k.solid, k.pml, static_cast<double>(k.bytes) / 1048576.0);
-  double bytes = static_cast<double>(k.bytes), total = 0;
-  mpi::check(MPI_Allreduce(&bytes, &total, 1, MPI_DOUBLE, MPI_SUM, comm), "MPI_Allreduce");
+  const double total = mpi::all_reduce_sum(comm, static_cast<double>(k.bytes));
   result.bytes = total;
   const fdtd::Box in = spec.problem.grid.interior();
   spdlog::info("solve: memory {:.1f} MiB: {:.1f} bytes per cell, {:.1f} per cell outside the PML", total / 1048576.0,
