@@ -10,9 +10,7 @@
 #include <thread>
 
 #include "core/errors.hpp"
-#include "banks/modal/modal_fem.hpp"
 #include "banks/modal/modal_job.hpp"
-#include "banks/modal/modal_solve.hpp"
 #include "banks/modal/modal_spec.hpp"
 #include "cli/run_options.hpp"
 #include "petsc/inertia.hpp"
@@ -48,15 +46,11 @@ struct EntryPlan {
 EntryPlan plan_entry(const ModalSpec& spec, std::size_t i) {
   EntryPlan p;
   const auto& axes = spec.samples_m[i];
-  const auto& material = spec.header.material;
   try {
-    const auto coarse = mesh_entry(spec, axes, spec.header.coarse_edge_m);
-    const FemModel model = assemble_fem(MPI_COMM_SELF, coarse.mesh, material);
-    const double lambda1 =
-        first_elastic_lambda(model, std::pow(2.5 * material.shear_speed_m_s() / axes[2], 2), spec.header.solve);
+    const FirstModeEstimate coarse = estimate_first_mode(MPI_COMM_SELF, spec, axes);  // the job's own
     const double k = spec.header.solve.f_max_multiple;
-    p.modes = petsc::eigenvalues_below(model.K, model.M, k * k * lambda1 * 1.0001) - 6;
-    p.f1_hz = std::sqrt(lambda1) / (2 * std::numbers::pi);
+    p.modes = petsc::eigenvalues_below(coarse.model.K, coarse.model.M, k * k * coarse.lambda1 * 1.0001) - 6;
+    p.f1_hz = coarse.f1_hz;
     p.h_m = modal_edge_length_m(spec, p.f1_hz);
     p.dofs = mesh_entry(spec, axes, p.h_m).quality.dofs;
   } catch (const std::exception& e) {
