@@ -163,9 +163,9 @@ void check_entry(const File& f, const std::string& g, const ModalEntry& e) {
 // passed, exactly the 6 rigid motions below the interval.
 void check_against_settings(const File& f, const std::string& g, const ModalEntry& e, const model::ModalBankHeader& h) {
   for (std::size_t i = 0; i < e.modes(); ++i)
-    if (e.relative_residuals[i] > h.residual_limit)
+    if (e.relative_residuals[i] > h.solve.residual_limit)
       throw InputError(fmt::format("{}: {}: mode {} has relative residual {} above the bank's residual_limit {}",
-                                   f.path(), g, i, e.relative_residuals[i], h.residual_limit));
+                                   f.path(), g, i, e.relative_residuals[i], h.solve.residual_limit));
   if (e.solve.found_in_interval != e.solve.below_hi - e.solve.below_lo || e.solve.below_lo != 6 ||
       static_cast<std::int64_t>(e.modes()) > e.solve.found_in_interval)
     throw InputError(fmt::format("{}: {}/solve: found_in_interval {}, below_lo {}, below_hi {} for {} modes: the "
@@ -217,15 +217,15 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   write_attribute<double>(file, "/material", "rayleigh_alpha_1_s", h.material.rayleigh_alpha_1_s);
   write_attribute<double>(file, "/material", "rayleigh_beta_s", h.material.rayleigh_beta_s);
   create_group(file, "/settings");
-  write_attribute<double>(file, "/settings", "f_max_multiple", h.f_max_multiple);
+  write_attribute<double>(file, "/settings", "f_max_multiple", h.solve.f_max_multiple);
   write_attribute<double>(file, "/settings", "elements_per_wavelength", h.elements_per_wavelength);
   write_attribute<double>(file, "/settings", "min_ratio", h.min_ratio);
-  write_attribute<double>(file, "/settings", "cluster_gap", h.cluster_gap);
-  write_attribute<double>(file, "/settings", "degenerate_gap", h.degenerate_gap);
+  write_attribute<double>(file, "/settings", "cluster_gap", h.solve.cluster_gap);
+  write_attribute<double>(file, "/settings", "degenerate_gap", h.solve.degenerate_gap);
   write_attribute<std::int32_t>(file, "/settings", "reference_fields", kernels_reference_fields);
   write_attribute<double>(file, "/settings", "coarse_edge_m", h.coarse_edge_m);
-  write_attribute<double>(file, "/settings", "solver_tolerance", h.solver_tolerance);
-  write_attribute<double>(file, "/settings", "residual_limit", h.residual_limit);
+  write_attribute<double>(file, "/settings", "solver_tolerance", h.solve.tolerance);
+  write_attribute<double>(file, "/settings", "residual_limit", h.solve.residual_limit);
   write_attribute<std::int32_t>(file, "/settings", "ranks_per_task", h.ranks_per_task);
   write_attribute(file, "/settings", "solver_libraries", h.solver_libraries);
   write_transfer_header(file, "/settings/transfer", h.transfer);
@@ -258,14 +258,16 @@ model::ModalBank read_modal_bank(const std::string& path) {
   if (!(m.rho_kg_m3 > 0) || !(m.youngs_pa > 0) || !(m.poisson > -1 && m.poisson < 0.5))
     throw InputError(fmt::format("{}: /material: rho {} kg/m^3, E {} Pa, nu {}: not an elastic material", path,
                                  m.rho_kg_m3, m.youngs_pa, m.poisson));
-  h.f_max_multiple = read_attribute<double>(file, "/settings", "f_max_multiple");
+  // The solve's settings as stored; max_iterations and nev_per_shift are not (they change the work,
+  // not the result) and read back as 0.
+  h.solve.f_max_multiple = read_attribute<double>(file, "/settings", "f_max_multiple");
   h.elements_per_wavelength = read_attribute<double>(file, "/settings", "elements_per_wavelength");
   h.min_ratio = read_attribute<double>(file, "/settings", "min_ratio");
-  h.cluster_gap = read_attribute<double>(file, "/settings", "cluster_gap");
-  h.degenerate_gap = read_attribute<double>(file, "/settings", "degenerate_gap");
+  h.solve.cluster_gap = read_attribute<double>(file, "/settings", "cluster_gap");
+  h.solve.degenerate_gap = read_attribute<double>(file, "/settings", "degenerate_gap");
   h.coarse_edge_m = read_attribute<double>(file, "/settings", "coarse_edge_m");
-  h.solver_tolerance = read_attribute<double>(file, "/settings", "solver_tolerance");
-  h.residual_limit = read_attribute<double>(file, "/settings", "residual_limit");
+  h.solve.tolerance = read_attribute<double>(file, "/settings", "solver_tolerance");
+  h.solve.residual_limit = read_attribute<double>(file, "/settings", "residual_limit");
   h.ranks_per_task = read_attribute<std::int32_t>(file, "/settings", "ranks_per_task");
   h.solver_libraries = read_string_attribute(file, "/settings", "solver_libraries");
   h.transfer = read_transfer_header(file, "/settings/transfer");

@@ -49,7 +49,7 @@ model::ModalTransfer read_transfer(const File& f, const std::string& g, std::siz
   return t;
 }
 
-void write_transfer_header(File& f, const std::string& g, const model::TransferHeader& h) {
+void write_transfer_header(File& f, const std::string& g, const model::TransferSettings& h) {
   create_group(f, g);
   write_attribute(f, g, "method", h.method);
   write_attribute<double>(f, g, "sound_speed_m_s", h.sound_speed_m_s);
@@ -60,8 +60,8 @@ void write_transfer_header(File& f, const std::string& g, const model::TransferH
   write_attribute<double>(f, g, "tail_tolerance", h.tail_tolerance);
 }
 
-model::TransferHeader read_transfer_header(const File& f, const std::string& g) {
-  model::TransferHeader h;
+model::TransferSettings read_transfer_header(const File& f, const std::string& g) {
+  model::TransferSettings h;  // the kernel's constants, not stored, keep their defaults
   h.method = read_string_attribute(f, g, "method");
   h.sound_speed_m_s = read_attribute<double>(f, g, "sound_speed_m_s");
   h.air_density_kg_m3 = read_attribute<double>(f, g, "air_density_kg_m3");

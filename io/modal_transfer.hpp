@@ -12,7 +12,7 @@ void write_transfer(File& f, const std::string& group, const model::ModalTransfe
 // Checks lengths, orders, the coefficient count and finiteness; InputError naming file and dataset.
 model::ModalTransfer read_transfer(const File& f, const std::string& group, std::size_t modes);
 
-void write_transfer_header(File& f, const std::string& group, const model::TransferHeader& h);
-model::TransferHeader read_transfer_header(const File& f, const std::string& group);
+void write_transfer_header(File& f, const std::string& group, const model::TransferSettings& h);
+model::TransferSettings read_transfer_header(const File& f, const std::string& group);
 
 }  // namespace clatter::io

@@ -1,8 +1,8 @@
 #pragma once
 // The modal soundbank (003 §5, Appendix E) as plain data: the one definition that io/ reads and
-// writes (format "clatter-modal-bank", docs/bank-format.md), jobs/ builds and the synthesizer will
-// render from. Per normalized ellipsoid (a <= b <= c, a^2 + b^2 + c^2 = 1 m^2) of one material:
-// every free vibration mode in [f_1, f_max], with its mass-normalized shape on the surface.
+// writes (format "clatter-modal-bank", docs/bank-format.md), banks/modal/ builds and the
+// synthesizer renders from. Per normalized ellipsoid (a <= b <= c, a^2 + b^2 + c^2 = 1 m^2) of one
+// material: every free vibration mode in [f_1, f_max], with its mass-normalized shape on the surface.
 // Numbers and vectors only; std only.
 #include <array>
 #include <cstdint>
@@ -91,28 +91,51 @@ struct ModalEntry {
   std::size_t modes() const { return frequencies_hz.size(); }
 };
 
-// How the transfer of every entry was computed (kernels/transfer/mode_transfer.hpp).
-struct TransferHeader {
-  std::string method;              // e.g. "equivalent sources, 8 parity classes; multipole about the centre"
-  double sound_speed_m_s = 0, air_density_kg_m3 = 0;
-  double points_per_source = 0, sources_per_wavelength = 0;
-  double residual_target = 0, tail_tolerance = 0;
+// How each mode's acoustic transfer is computed (kernels/transfer/mode_transfer.hpp, which takes
+// this struct as is). The bank file holds `method` and the six settings a config may change
+// (/settings/transfer); the kernel's own constants below them keep their defaults when read back.
+struct TransferSettings {
+  std::string method;                    // recorded in the bank, not read by the kernel: e.g. "equivalent
+                                         // sources, 8 parity classes; multipole about the centre"
+  double sound_speed_m_s = 343.2;
+  double air_density_kg_m3 = 1.2041;
+  double points_per_source = 1.5;        // fit points per angle / sources per angle (and >= the data's)
+  double sources_per_wavelength = 3;     // source spacing <= lambda / this (and <= the layer depth)
+  double residual_target = 1e-2;         // residual x normal_fraction above it tries the next depth
+  double tail_tolerance = 1e-3;          // far-field L2 share the truncation may drop
+  // The kernel's constants, not stored in the bank.
+  std::vector<double> source_depths{0.65, 0.5, 0.35};  // layer depth / a, tried in this order
+  double class_threshold = 1e-3;         // parity classes below this share of ||g|| are not fitted
+  int minimum_per_angle = 6;
+  // A ceiling on the sources of one octant (the QR costs their cube): past it both counts shrink
+  // alike and the residual says what that cost. The default sphere entry's top mode needs ~580.
+  int max_sources_per_octant = 900;
+};
+
+// How the eigen-solve of every entry is set up (banks/modal/modal_solve.hpp), and the pre-solve
+// that estimates f_1 with it. The bank file holds the first five (/settings); max_iterations and
+// nev_per_shift change the work, not the result, so they are not stored and read back as 0.
+struct ModalSolveSettings {
+  double f_max_multiple = 4;             // f_max = f_max_multiple * f_1, per entry
+  double cluster_gap = 5e-3;             // relative frequency gap that separates multiplets
+  double degenerate_gap = 1e-8;          // Ritz values closer than this get the reference-field basis
+                                         // (splits far below any mesh asymmetry)
+  double tolerance = 1e-11;              // SLEPc's -eps_tol
+  double residual_limit = 1e-8;          // every mode's relative residual is at most this
+  std::int64_t max_iterations = 0;       // SLEPc restarts per shift (-eps_max_it); 0: SLEPc's default
+  std::int64_t nev_per_shift = 0;        // eigenpairs sought around each shift; 0: SLEPc's default
 };
 
 // What every entry of a bank shares: the material and the settings that decide its content.
 struct ModalBankHeader {
   Material material;
-  double f_max_multiple = 0;           // f_max = f_max_multiple * f_1, per entry
+  ModalSolveSettings solve;
   double elements_per_wavelength = 0;  // h = shear wavelength at f_max / this
   double min_ratio = 0;                // smallest a/c of the sampled patch
-  double cluster_gap = 0;              // relative frequency gap that separates multiplets
-  double degenerate_gap = 0;           // Ritz values closer than this get the reference-field basis
   double coarse_edge_m = 0;            // h of the pre-solve that estimates f_1
-  double solver_tolerance = 0;         // SLEPc's -eps_tol
-  double residual_limit = 0;           // every mode's relative residual is at most this
   std::int32_t ranks_per_task = 0;     // ranks that solved each entry (shapes agree across it to ~1e-8)
   std::string solver_libraries;        // e.g. "PETSc 3.18.5, SLEPc 3.18.2": the last bits depend on them
-  TransferHeader transfer;
+  TransferSettings transfer;
 };
 
 struct ModalBank {

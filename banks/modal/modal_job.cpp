@@ -41,18 +41,6 @@ kernels::fem::EllipsoidMesh mesh_or_fail(const ModalSpec& spec, const std::array
   }
 }
 
-ModalSolveSettings solve_settings(const ModalSpec& spec) {
-  ModalSolveSettings s;
-  s.f_max_multiple = spec.header.f_max_multiple;
-  s.cluster_gap = spec.header.cluster_gap;
-  s.degenerate_gap = spec.header.degenerate_gap;
-  s.tolerance = spec.solver_tolerance;
-  s.residual_limit = spec.header.residual_limit;
-  s.max_iterations = spec.max_iterations;
-  s.nev_per_shift = spec.nev_per_shift;
-  return s;
-}
-
 model::ModalMeshStats mesh_stats(const kernels::fem::MeshQuality& q) {
   return {q.elements,         q.nodes,           q.dofs,         q.edge_length_m, q.max_radius_edge,
           q.mean_radius_edge, q.min_dihedral_deg, q.max_dihedral_deg, q.min_jacobian_ratio};
@@ -93,29 +81,36 @@ kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<d
 }
 
 double modal_edge_length_m(const ModalSpec& spec, double f1_hz) {
-  return spec.header.material.shear_speed_m_s() / (spec.header.f_max_multiple * f1_hz) /
+  return spec.header.material.shear_speed_m_s() / (spec.header.solve.f_max_multiple * f1_hz) /
          spec.header.elements_per_wavelength;
+}
+
+FirstModeEstimate estimate_first_mode(MPI_Comm comm, const ModalSpec& spec, const std::array<double, 3>& axes) {
+  Stage stage("estimate");
+  const auto& material = spec.header.material;
+  auto coarse = mesh_or_fail(spec, axes, spec.header.coarse_edge_m);
+  FemModel model = assemble_fem(comm, coarse.mesh, material);
+  // A sphere of radius c rings at omega c / c_s ~ 2.5 (Lamb's n = 2); elongation lowers it.
+  const double guess = std::pow(2.5 * material.shear_speed_m_s() / axes[2], 2);
+  const double lambda1 = first_elastic_lambda(model, guess, spec.header.solve);
+  return {std::move(coarse), std::move(model), lambda1, std::sqrt(lambda1) / (2 * std::numbers::pi)};
 }
 
 model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::size_t index) {
   const auto t_start = clock_type::now();
   const auto& axes = spec.samples_m.at(index);
   const auto& material = spec.header.material;
-  const ModalSolveSettings settings = solve_settings(spec);
+  const auto& settings = spec.header.solve;
   model::ModalEntry entry;
   entry.cost.ranks = mpi::size(group);
-  double lambda1_estimate = 0;
-  {
-    Stage stage("estimate");
+  double lambda1_estimate = 0, f1_estimate_hz = 0;
+  {  // a block: the coarse model is freed before the fine one is assembled
     const auto t0 = clock_type::now();
-    const auto coarse = mesh_or_fail(spec, axes, spec.coarse_edge_m);
-    const FemModel model = assemble_fem(group, coarse.mesh, material);
-    // A sphere of radius c rings at omega c / c_s ~ 2.5 (Lamb's n = 2); elongation lowers it.
-    const double guess = std::pow(2.5 * material.shear_speed_m_s() / axes[2], 2);
-    lambda1_estimate = first_elastic_lambda(model, guess, settings);
+    const FirstModeEstimate estimate = estimate_first_mode(group, spec, axes);
     entry.cost.estimate_s = since(t0);
+    lambda1_estimate = estimate.lambda1;
+    f1_estimate_hz = estimate.f1_hz;
   }
-  const double f1_estimate_hz = std::sqrt(lambda1_estimate) / (2 * std::numbers::pi);
   auto t0 = clock_type::now();
   const auto mesh = mesh_or_fail(spec, axes, modal_edge_length_m(spec, f1_estimate_hz));
   entry.cost.mesh_s = since(t0);

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "banks/modal/modal_fem.hpp"
 #include "banks/modal/modal_spec.hpp"
 #include "sweep/sweep.hpp"
 #include "model/modal_bank.hpp"
@@ -30,6 +31,19 @@ model::ModalBank merge_modal_results(const ModalSpec& spec, const std::string& r
 // curvature that folded; h alone may be held by the thickness cap); throws a MeshError
 // with every attempt's reason. Deterministic, so every rank of a group gets the same mesh.
 kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m);
+
+// The pre-solve that estimates f_1 (stage `estimate`, docs/modal.md): the ellipsoid meshed at
+// header.coarse_edge_m (mesh_entry; a failure is the task's TaskFailure), K and M assembled on
+// `comm`, and the lowest elastic eigenvalue bracketed from the guess of a sphere of radius c
+// (omega c / c_s ~ 2.5) with the header's solve settings. The one definition that the job, `plan`
+// and `modal-samples` share, so their f_1 agree to the bit. Collective on `comm`.
+struct FirstModeEstimate {
+  kernels::fem::EllipsoidMesh mesh;  // the coarse mesh
+  FemModel model;                    // its K and M
+  double lambda1 = 0;                // omega_1^2 [rad^2/s^2]
+  double f1_hz = 0;                  // sqrt(lambda1) / 2 pi
+};
+FirstModeEstimate estimate_first_mode(MPI_Comm comm, const ModalSpec& spec, const std::array<double, 3>& axes);
 
 // The edge length that resolves the shear wavelength at f_max: c_s / f_max / elements_per_wavelength.
 double modal_edge_length_m(const ModalSpec& spec, double first_frequency_hz);

@@ -10,9 +10,7 @@
 #include <thread>
 
 #include "core/errors.hpp"
-#include "banks/modal/modal_fem.hpp"
 #include "banks/modal/modal_job.hpp"
-#include "banks/modal/modal_solve.hpp"
 #include "banks/modal/modal_spec.hpp"
 #include "cli/run_options.hpp"
 #include "petsc/inertia.hpp"
@@ -34,7 +32,8 @@ constexpr double kTransferExponent = 4.5;
 
 // k c at the top of an entry's range: what sizes its transfer.
 double top_kc(const ModalSpec& spec, double f1_hz, const std::array<double, 3>& axes) {
-  return 2 * std::numbers::pi * f1_hz * spec.header.f_max_multiple * axes[2] / spec.header.transfer.sound_speed_m_s;
+  return 2 * std::numbers::pi * f1_hz * spec.header.solve.f_max_multiple * axes[2] /
+         spec.header.transfer.sound_speed_m_s;
 }
 
 struct EntryPlan {
@@ -47,16 +46,11 @@ struct EntryPlan {
 EntryPlan plan_entry(const ModalSpec& spec, std::size_t i) {
   EntryPlan p;
   const auto& axes = spec.samples_m[i];
-  const auto& material = spec.header.material;
   try {
-    const auto coarse = mesh_entry(spec, axes, spec.coarse_edge_m);
-    const FemModel model = assemble_fem(MPI_COMM_SELF, coarse.mesh, material);
-    ModalSolveSettings settings;
-    settings.tolerance = spec.solver_tolerance;
-    const double lambda1 = first_elastic_lambda(model, std::pow(2.5 * material.shear_speed_m_s() / axes[2], 2), settings);
-    const double k = spec.header.f_max_multiple;
-    p.modes = petsc::eigenvalues_below(model.K, model.M, k * k * lambda1 * 1.0001) - 6;
-    p.f1_hz = std::sqrt(lambda1) / (2 * std::numbers::pi);
+    const FirstModeEstimate coarse = estimate_first_mode(MPI_COMM_SELF, spec, axes);  // the job's own
+    const double k = spec.header.solve.f_max_multiple;
+    p.modes = petsc::eigenvalues_below(coarse.model.K, coarse.model.M, k * k * coarse.lambda1 * 1.0001) - 6;
+    p.f1_hz = coarse.f1_hz;
     p.h_m = modal_edge_length_m(spec, p.f1_hz);
     p.dofs = mesh_entry(spec, axes, p.h_m).quality.dofs;
   } catch (const std::exception& e) {
@@ -115,7 +109,7 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
   const auto& m = spec.header.material;
   e.report = fmt::format("plan: {}: modal bank of {} ellipsoids, {} (c_s = {:.1f} m/s), modes to {} f_1\n",
                          o.config_path.empty() ? "defaults" : o.config_path, tasks.size(), m.name, m.shear_speed_m_s(),
-                         spec.header.f_max_multiple);
+                         spec.header.solve.f_max_multiple);
   e.report += fmt::format("  pre-solves:  every entry's f_1, h, dofs and mode count (coarse inertia) in {:.1f} s here\n",
                           presolve_s);
   e.report += fmt::format("  calibration: {} solved here in {:.1f} s + {:.1f} s transfer: {} modes, {} dofs, {:.0f} MB MUMPS "

@@ -36,15 +36,12 @@ struct SamplesOptions {
 
 // f_2/f_1 .. f_{n+1}/f_1 of one ellipsoid on the coarse mesh (this rank alone).
 std::vector<double> frequency_ratios(const ModalSpec& spec, const kernels::modal::Axes& axes, int n) {
-  const auto mesh = mesh_entry(spec, axes, spec.coarse_edge_m);
-  const FemModel model = assemble_fem(MPI_COMM_SELF, mesh.mesh, spec.header.material);
-  const auto reference = reference_fields(model.layout, mesh.mesh, axes);
-  ModalSolveSettings settings;
-  settings.tolerance = spec.solver_tolerance;
-  const double guess = std::pow(2.5 * spec.header.material.shear_speed_m_s() / axes[2], 2);
-  const double lambda1 = first_elastic_lambda(model, guess, settings);
+  const FirstModeEstimate coarse = estimate_first_mode(MPI_COMM_SELF, spec, axes);  // the job's own
+  const auto reference = reference_fields(coarse.model.layout, coarse.mesh.mesh, axes);
+  // The bank's solve settings; only the range grows here, until the solve holds n + 1 modes.
+  model::ModalSolveSettings settings = spec.header.solve;
   for (settings.f_max_multiple = 1.5;; settings.f_max_multiple *= 1.5) {
-    const ModeSet set = solve_modes(model, reference, lambda1, settings);
+    const ModeSet set = solve_modes(coarse.model, reference, coarse.lambda1, settings);
     if (static_cast<int>(set.lambdas.size()) > n) {
       std::vector<double> ratios;
       for (int k = 1; k <= n; ++k) ratios.push_back(std::sqrt(set.lambdas[static_cast<std::size_t>(k)] / set.lambdas[0]));

@@ -18,7 +18,7 @@ namespace {
 
 constexpr PetscInt kRigidMotions = 6;
 
-petsc::SliceSettings slice(const ModalSolveSettings& s, double lo, double hi) {
+petsc::SliceSettings slice(const model::ModalSolveSettings& s, double lo, double hi) {
   petsc::SliceSettings out;
   out.lambda_lo = lo;
   out.lambda_hi = hi;
@@ -49,8 +49,8 @@ std::size_t kept_count(const std::vector<double>& lambdas, double keep_to, doubl
 }
 
 // Rayleigh-Ritz and the reference-field rule in each cluster; residuals of the final vectors.
-void apply_basis_rule(const FemModel& m, const std::vector<petsc::Vector>& reference, const ModalSolveSettings& s,
-                      ModeSet& set) {
+void apply_basis_rule(const FemModel& m, const std::vector<petsc::Vector>& reference,
+                      const model::ModalSolveSettings& s, ModeSet& set) {
   Stage stage("basis");
   std::vector<double> omegas;
   for (double l : set.lambdas) omegas.push_back(std::sqrt(l));
@@ -93,7 +93,7 @@ void apply_basis_rule(const FemModel& m, const std::vector<petsc::Vector>& refer
 
 }  // namespace
 
-double first_elastic_lambda(const FemModel& m, double guess, const ModalSolveSettings& s) {
+double first_elastic_lambda(const FemModel& m, double guess, const model::ModalSolveSettings& s) {
   double sigma = guess;
   PetscInt below = petsc::eigenvalues_below(m.K, m.M, sigma);
   for (int step = 0; below > kRigidMotions && step < 40; ++step) below = petsc::eigenvalues_below(m.K, m.M, sigma /= 4);
@@ -113,7 +113,7 @@ double first_elastic_lambda(const FemModel& m, double guess, const ModalSolveSet
 }
 
 ModeSet solve_modes(const FemModel& m, const std::vector<petsc::Vector>& reference, double lambda1_estimate,
-                    const ModalSolveSettings& s) {
+                    const model::ModalSolveSettings& s) {
   const double k2 = s.f_max_multiple * s.f_max_multiple;
   double lo = 0.25 * lambda1_estimate, hi = 1.1 * k2 * lambda1_estimate;
   for (int attempt = 0;; ++attempt) {

@@ -11,17 +11,12 @@
 
 namespace clatter::jobs {
 
-struct ModalSolveSettings {
-  double f_max_multiple = 4;
-  double cluster_gap = 5e-3;      // relative, in frequency
-  double degenerate_gap = 1e-8;   // Ritz values closer than this are one degenerate group
-  double tolerance = 1e-11, residual_limit = 1e-8;
-  long long max_iterations = 0, nev_per_shift = 0;
-};
+// Both solves take the bank header's settings (model::ModalBankHeader::solve) as they are.
 
 // The lowest eigenvalue above the 6 rigid motions [rad^2/s^2]. `guess` may be on either side.
+// Of `settings` only the slicing's (tolerance, max_iterations, nev_per_shift) are read.
 // Throws TaskFailure when the inertia never shows exactly 6 motions below a shift.
-double first_elastic_lambda(const FemModel& model, double guess, const ModalSolveSettings& settings);
+double first_elastic_lambda(const FemModel& model, double guess, const model::ModalSolveSettings& settings);
 
 struct ModeSet {
   std::vector<double> lambdas;                 // ascending [rad^2/s^2]
@@ -38,6 +33,6 @@ struct ModeSet {
 // TaskFailure when the inertia count disagrees, the rigid motions are not exactly 6, or a residual
 // exceeds the limit.
 ModeSet solve_modes(const FemModel& model, const std::vector<petsc::Vector>& reference, double lambda1_estimate,
-                    const ModalSolveSettings& settings);
+                    const model::ModalSolveSettings& settings);
 
 }  // namespace clatter::jobs

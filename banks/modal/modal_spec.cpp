@@ -9,13 +9,12 @@
 #include "io/materials.hpp"
 #include "io/text_file.hpp"
 #include "kernels/modal/patch_sampling.hpp"
-#include "kernels/transfer/mode_transfer.hpp"
 
 namespace clatter::jobs {
 namespace {
 
-// The transfer's defaults are the kernel's own (one definition).
-const kernels::transfer::TransferSettings kTransfer{};
+// The transfer's defaults are the bank model's own (one definition, which the kernel takes).
+const model::TransferSettings kTransfer{};
 
 // A sweep of more entries is a mistake, not a bank (003's banks have tens).
 constexpr std::size_t kMaxSamples = 10000;
@@ -81,16 +80,15 @@ ModalSpec make_modal_spec(const io::Config& config) {
   h.material = io::find_material(io::parse_materials(text, spec.material_table), config.string("material.name"),
                                  spec.material_table);
   h.min_ratio = config.real("patch.min_ratio");
-  h.f_max_multiple = config.real("modes.f_max_multiple");
-  h.cluster_gap = config.real("modes.cluster_gap");
+  h.solve.f_max_multiple = config.real("modes.f_max_multiple");
+  h.solve.cluster_gap = config.real("modes.cluster_gap");
+  h.solve.tolerance = config.real("solver.tolerance");
+  h.solve.residual_limit = config.real("solver.residual_limit");
+  h.solve.max_iterations = config.integer("solver.max_iterations");
+  h.solve.nev_per_shift = config.integer("solver.nev_per_shift");
+  // h.solve.degenerate_gap keeps its default: no key sets it (it splits far below any mesh asymmetry).
   h.elements_per_wavelength = config.real("mesh.elements_per_wavelength");
-  h.solver_tolerance = config.real("solver.tolerance");
-  h.residual_limit = config.real("solver.residual_limit");
-  spec.solver_tolerance = h.solver_tolerance;
-  spec.max_iterations = config.integer("solver.max_iterations");
-  spec.nev_per_shift = config.integer("solver.nev_per_shift");
-  spec.coarse_edge_m = config.real("mesh.coarse_edge_m");
-  h.coarse_edge_m = spec.coarse_edge_m;
+  h.coarse_edge_m = config.real("mesh.coarse_edge_m");
   h.transfer.method = "equivalent sources (monopoles on a layer under the surface, 8 parity classes), multipole "
                       "about the centre";
   h.transfer.sound_speed_m_s = config.real("medium.c_m_s");
@@ -99,12 +97,11 @@ ModalSpec make_modal_spec(const io::Config& config) {
   h.transfer.sources_per_wavelength = config.real("transfer.sources_per_wavelength");
   h.transfer.residual_target = config.real("transfer.residual_target");
   h.transfer.tail_tolerance = config.real("transfer.tail_tolerance");
-  h.degenerate_gap = 1e-8;  // ModalSolveSettings' default: splits far below any mesh asymmetry
   spec.bounds = {config.real("mesh.max_radius_edge"), config.real("mesh.min_dihedral_deg"),
                  config.real("mesh.min_jacobian_ratio")};
-  if (!(h.residual_limit > h.solver_tolerance))
+  if (!(h.solve.residual_limit > h.solve.tolerance))
     throw InputError(fmt::format("solver.residual_limit = {} must exceed solver.tolerance = {}: the solver stops at "
-                                 "its tolerance", h.residual_limit, h.solver_tolerance));
+                                 "its tolerance", h.solve.residual_limit, h.solve.tolerance));
   const auto& list = config.reals("patch.samples");
   if (list.empty()) throw InputError("patch.samples = []: a modal bank needs at least one ellipsoid");
   if (list.size() / 3 > kMaxSamples)

@@ -15,13 +15,11 @@ namespace clatter::jobs {
 const io::Schema& modal_schema();
 
 struct ModalSpec {
-  model::ModalBankHeader header;            // material and the settings every entry shares
+  model::ModalBankHeader header;            // material and the settings every entry shares (the solve's,
+                                            // the pre-solve's mesh, the transfer's)
   std::string material_table;               // where the material came from ("built-in" or a path)
   std::vector<std::array<double, 3>> samples_m;  // patch points, a <= b <= c, a^2 + b^2 + c^2 = 1
-  double coarse_edge_m = 0.25;              // h of the pre-solve that estimates f_1
   kernels::fem::EllipsoidMeshBounds bounds;  // a mesh outside them fails its task
-  double solver_tolerance = 1e-11;
-  long long max_iterations = 0, nev_per_shift = 0;
 };
 
 // Reads the material table (material.table, or the built-in configs/materials.toml) and checks

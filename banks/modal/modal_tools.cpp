@@ -82,9 +82,9 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
                      "1/s, beta = {} s\n", m.name, m.rho_kg_m3, m.youngs_pa, m.poisson, m.shear_speed_m_s(),
                      m.rayleigh_alpha_1_s, m.rayleigh_beta_s);
   out += fmt::format("  settings:   modes f_1 .. {} f_1; h = shear wavelength at f_max / {}; min a/c {}; multiplets "
-                     "split by < {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", h.f_max_multiple,
-                     h.elements_per_wavelength, h.min_ratio, h.cluster_gap, h.solver_tolerance, h.residual_limit,
-                     h.ranks_per_task);
+                     "split by < {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", h.solve.f_max_multiple,
+                     h.elements_per_wavelength, h.min_ratio, h.solve.cluster_gap, h.solve.tolerance,
+                     h.solve.residual_limit, h.ranks_per_task);
   const auto& tr = h.transfer;
   out += fmt::format("  transfer:   {}; air c = {} m/s, rho = {} kg/m^3; {} fit points per source (per angle), {} sources per wavelength, "
                      "residual target {}, tail {}\n", tr.method, tr.sound_speed_m_s, tr.air_density_kg_m3,

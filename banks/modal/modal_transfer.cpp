@@ -92,17 +92,6 @@ model::ModalTransfer assemble(const std::vector<std::vector<ModeRecord>>& record
 
 }  // namespace
 
-kt::TransferSettings transfer_settings(const model::TransferHeader& h) {
-  kt::TransferSettings s;
-  s.sound_speed_m_s = h.sound_speed_m_s;
-  s.air_density_kg_m3 = h.air_density_kg_m3;
-  s.points_per_source = h.points_per_source;
-  s.sources_per_wavelength = h.sources_per_wavelength;
-  s.residual_target = h.residual_target;
-  s.tail_tolerance = h.tail_tolerance;
-  return s;
-}
-
 kt::ModeTransfer mode_transfer(const model::ModalEntry& entry, std::size_t mode, const kt::TransferSettings& settings) {
   const std::size_t per_mode = 3 * entry.surface_nodes_m.size();
   const std::span<const double> shape(entry.shapes.data() + mode * per_mode, per_mode);
@@ -112,11 +101,10 @@ kt::ModeTransfer mode_transfer(const model::ModalEntry& entry, std::size_t mode,
                                  u, settings);
 }
 
-void compute_modal_transfer(MPI_Comm group, const model::TransferHeader& header, model::ModalEntry& entry) {
+void compute_modal_transfer(MPI_Comm group, const model::TransferSettings& settings, model::ModalEntry& entry) {
   Stage stage("transfer");
   const auto t0 = std::chrono::steady_clock::now();
   share_entry(group, entry);
-  const auto settings = transfer_settings(header);
   const int rank = mpi::rank(group), size = mpi::size(group);
   RankModes mine;
   // In rounds of one mode per rank, polled between rounds: SIGTERM stops the task within a mode.

@@ -10,11 +10,10 @@
 
 namespace clatter::jobs {
 
-kernels::transfer::TransferSettings transfer_settings(const model::TransferHeader& header);
-
 // entry: complete on rank 0 of `group` (surface, shapes, frequencies), ignored elsewhere; on
-// rank 0 its `transfer` and cost.transfer_s / transfer_core_s are filled in.
-void compute_modal_transfer(MPI_Comm group, const model::TransferHeader& header, model::ModalEntry& entry);
+// rank 0 its `transfer` and cost.transfer_s / transfer_core_s are filled in. settings: the bank
+// header's (model::ModalBankHeader::transfer), which the kernel takes as they are.
+void compute_modal_transfer(MPI_Comm group, const model::TransferSettings& settings, model::ModalEntry& entry);
 
 // One mode of an entry, serially (what each rank runs; tests and `probe` use it too).
 kernels::transfer::ModeTransfer mode_transfer(const model::ModalEntry& entry, std::size_t mode,

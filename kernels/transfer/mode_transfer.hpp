@@ -19,23 +19,13 @@
 #include "kernels/transfer/ellipsoid_points.hpp"
 #include "kernels/transfer/equivalent_sources.hpp"
 #include "kernels/transfer/multipole.hpp"
+#include "model/modal_bank.hpp"
 
 namespace clatter::kernels::transfer {
 
-struct TransferSettings {
-  double sound_speed_m_s = 343.2;
-  double air_density_kg_m3 = 1.2041;
-  double points_per_source = 1.5;      // fit points per angle / sources per angle (and >= the data's)
-  double sources_per_wavelength = 3;     // source spacing <= lambda / this (and <= the layer depth)
-  std::vector<double> source_depths{0.65, 0.5, 0.35};  // layer depth / a, tried in this order
-  double residual_target = 1e-2;       // residual x normal_fraction above it tries the next depth
-  double class_threshold = 1e-3;       // parity classes below this share of ||g|| are not fitted
-  double tail_tolerance = 1e-3;        // far-field L2 share the truncation may drop
-  int minimum_per_angle = 6;
-  // A ceiling on the sources of one octant (the QR costs their cube): past it both counts shrink
-  // alike and the residual says what that cost. The default sphere entry's top mode needs ~580.
-  int max_sources_per_octant = 900;
-};
+// The settings are the bank's own (model/modal_bank.hpp): one definition that the modal bank
+// header holds and this kernel reads, so nothing is copied between the two.
+using TransferSettings = model::TransferSettings;
 
 // The displacement u [m per unit modal amplitude] at the points of the first octant's mirror s.
 using SurfaceDisplacement = std::function<std::vector<Eigen::Vector3d>(const SurfacePoints& octant, int s)>;

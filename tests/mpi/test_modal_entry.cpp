@@ -116,7 +116,7 @@ TEST(ModalEntry, ScaledMeshScalesFrequenciesAndShapes) {
   const std::array<double, 3> axes{0.4042260417272216, 0.6467616667635546, 0.6467616667635546};
   const double gamma = 0.37;
   auto mesh = kernels::fem::mesh_ellipsoid({axes, 0.3});
-  jobs::ModalSolveSettings settings;
+  model::ModalSolveSettings settings;
   settings.f_max_multiple = 1.5;
   std::vector<jobs::ModeSet> sets;
   for (double scale : {1.0, gamma}) {

@@ -75,7 +75,7 @@ void check_far_field(double a, double b, double c) {
   const auto entry = jobs::build_modal_entry(MPI_COMM_WORLD, spec, 0);
   if (rank() != 0) return;
   ASSERT_GT(entry.modes(), 0u);
-  const auto settings = jobs::transfer_settings(spec.header.transfer);
+  const auto& settings = spec.header.transfer;
   for (const std::size_t mode : {std::size_t{0}, entry.modes() - 1}) {
     const kt::ModeTransfer t = jobs::mode_transfer(entry, mode, settings);
     const kt::Multipole stored = kt::stored_multipole(entry.transfer, mode);
@@ -105,7 +105,7 @@ TEST(ModalTransfer, ScalesAsGammaToTheMinusFiveHalves) {
     for (double& x : node) x *= gamma;
   for (double& f : scaled.frequencies_hz) f /= gamma;
   for (double& u : scaled.shapes) u *= std::pow(gamma, -1.5);
-  const auto settings = jobs::transfer_settings(spec.header.transfer);
+  const auto& settings = spec.header.transfer;
   for (const std::size_t mode : {std::size_t{0}, entry.modes() - 1}) {
     const auto t = jobs::mode_transfer(entry, mode, settings), ts = jobs::mode_transfer(scaled, mode, settings);
     EXPECT_NEAR(ts.expansion.k_rad_m * gamma / t.expansion.k_rad_m, 1.0, 1e-12);
