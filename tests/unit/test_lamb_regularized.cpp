@@ -121,10 +121,11 @@ TEST(LambRegularized, ClosedFormMatchesNumericalConvolution) {
 
 TEST(LambRegularized, ClosedFormMatchesNumericalConvolutionAtOtherPoissonRatios) {
   // The same at other nu (0.27: just past the cubic's double root; 0.1: a root 1e-4 below
-  // alpha^2). This exposes a round-off defect of lamb.cpp: the Rayleigh root's terms end at
-  // x_R = sqrt(y_R), where V = sqrt(x_R^2 - y_R) should vanish but is sqrt(+-2.2e-16) = 1.5e-8
-  // whenever x_R^2 != y_R in floating point, which moves the closed form by ~1e-9 absolute (up to
-  // ~4e-6 relative). At nu = 0.2, 0.25 and 0.33, x_R^2 == y_R happens to hold exactly.
+  // alpha^2). These guard a round-off case: the Rayleigh root's terms end at x_R = sqrt(y_R),
+  // where V = sqrt(x_R^2 - y_R) vanishes, but x_R^2 - y_R rounds to +-2.2e-16 at some of these nu
+  // (at nu = 0.2, 0.25 and 0.33 x_R^2 == y_R happens to hold exactly), and its square root 1.5e-8
+  // would move the closed form by ~1e-9 absolute, up to ~4e-6 relative, far over the 1e-7 asked.
+  // LambSurface::smoothed takes V = 0 exactly at the path's end x == tau_end (u_of in lamb.cpp).
   double worst = 0;
   for (const double nu : {0.1, 0.27, 0.3, 0.4, 0.45, 0.49}) {
     const double err = worst_smoothing_error(nu, 1e-7);
