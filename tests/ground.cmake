@@ -20,6 +20,13 @@ add_test(NAME example_config_ground_demo_is_default COMMAND bash -c
 set_tests_properties(example_config_ground_is_schema_default example_config_ground_demo_is_default PROPERTIES
                      ENVIRONMENT "${CLATTER_MPI_ENV}" LABELS unit)
 
+# The granite floor: a rock slide on granite (clatter-sim) rendered with a ground bank built for
+# granite alone, both from configs/materials.toml: exit 0 and a ground stem (cli/granite_floor_checks.py).
+add_test(NAME granite_floor_checks COMMAND ${expect_output} "granite floor checks: all passed" -- ${CLATTER_PYTHON}
+         ${CMAKE_CURRENT_SOURCE_DIR}/cli/granite_floor_checks.py ${CLATTER_BIN}/clatter-bank ${CLATTER_BIN}/clatter-sim
+         ${CLATTER_BIN}/clatter-synth ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/granite_floor)
+set_tests_properties(granite_floor_checks PROPERTIES ENVIRONMENT "${CLATTER_MPI_ENV}" LABELS unit TIMEOUT 120)
+
 # Bad input: exit 2, one line naming the file, key and value, nothing written.
 clatter_error_test(bad_ground_poisson 0 "ground_materials_poisson.toml:4;jelly.poisson = 0.5;must be in (-1, 0.5)"
                    ground --set ground.table=${bad_in}/ground_materials_poisson.toml --set ground.materials=jelly -o out.h5)
