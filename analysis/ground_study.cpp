@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
-#include "io/ground_materials.hpp"
+#include "io/materials.hpp"
 #include "kernels/ground/drop_study.hpp"
 
 namespace {
@@ -33,14 +33,17 @@ void print_response(double nu, double cs, double r, const std::vector<double>& e
 }
 
 void print_drop(const BallDrop& base, const std::vector<double>& elevations_deg) {
-  const auto& mats = io::builtin_ground_materials();
+  // The eight grounds (and balls) of Qu & James's poster, seed 004.
+  std::vector<model::Material> mats;
+  for (const char* name : {"steel", "ceramic", "granite", "concrete", "wood", "plastic", "soil", "wax"})
+    mats.push_back(io::find_material(io::builtin_materials(), name, io::kBuiltinMaterialsSource));
   std::printf(
       "elevation_deg,ball,ground,relative_db,ground_energy_pa2_s,ball_energy_pa2_s,ground_peak_pa,ball_peak_pa,eta,knee_ratio\n");
   for (double el : elevations_deg)
     for (const auto& g : mats) {
       BallDrop d = base;
       d.elevation_rad = el * std::numbers::pi / 180;
-      const HalfSpace ground = half_space(g.youngs_pa, g.poisson, g.rho_kg_m3);
+      const model::Material& ground = g;
       // The ground's sound is linear in the impulse, so one solve per ground serves every ball.
       const DropSound unit = drop_sound(d, ground);
       // c_s^2 t_c / (2 D c0): above 1 the direct sound's surface patch is bounded by the air's delay

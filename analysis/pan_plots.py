@@ -79,7 +79,7 @@ def raw_solve(args, config, tmp, b, c, points, fields="[1, 2, 3, 4, 5, 6]"):
         scheme = toml_value(config, "solver", "scheme").strip('"')
     except KeyError:
         scheme = "me4"
-    # The domain of the bank's own solves (jobs/pan_spec.cpp): 3 cells past the largest radius, and
+    # The domain of the bank's own solves (banks/pan/pan_spec.cpp): 3 cells past the largest radius, and
     # 8 more for me4's blend into the PML.
     margin = 3 + (8 if scheme == "me4" else 0)
     cmd += ["--set", f"solver.scheme={scheme}"]

@@ -1,5 +1,5 @@
 #pragma once
-// Schema keys every acoustic job shares. Apart from jobs/run_options.hpp (CLI11, MPI), so the
+// Schema keys every acoustic job shares. Apart from cli/run_options.hpp (CLI11, MPI), so the
 // MPI-free specs (clatter_specs) can build their schemas from them.
 #include <vector>
 

@@ -38,7 +38,7 @@ struct PlanEstimate {
 };
 
 // The predicted wall time of these tasks handed out in order to `groups` groups, each taking the
-// next task when it is free (jobs/sweep.hpp's dynamic hand-out).
+// next task when it is free (sweep/sweep.hpp's dynamic hand-out).
 double list_schedule_s(const std::vector<double>& task_s, int groups);
 
 }  // namespace clatter::jobs

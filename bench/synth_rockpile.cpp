@@ -23,6 +23,7 @@
 #include "synth/ground_source.hpp"
 #include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
+#include "tests/unit/make_material.hpp"
 
 using namespace clatter;
 
@@ -33,8 +34,8 @@ io::Scene rock_pile(std::size_t n_objects, std::size_t n_events, double duration
   std::uniform_real_distribution<double> u(0.0, 1.0);
   io::Scene s;
   s.path = "generated rock pile";
-  s.materials["granite"] = {5e10, 0.2, true, 6.0, 1e-7};  // nu of the glass-class modal bank (docs/materials.md)
-  s.materials["concrete"] = {3e10, 0.2};
+  s.materials["granite"] = clatter::test::damped(5e10, 0.2, 6.0, 1e-7);  // nu of the glass-class modal bank (docs/materials.md)
+  s.materials["concrete"] = clatter::test::elastic(3e10, 0.2);
   s.ground_material = "concrete";
   const double pi = 3.14159265358979323846;
   for (std::size_t i = 0; i < n_objects; ++i) {
@@ -75,8 +76,7 @@ void use_bank_ground(io::Scene& scene, const synth::GroundSource& ground) {
   for (const auto& candidate : materials)
     if (candidate.name == "concrete") m = &candidate;
   scene.ground_material = m->name;
-  scene.materials[m->name] = {m->youngs_pa, m->poisson};
-  scene.materials[m->name].density_kg_m3 = m->rho_kg_m3;
+  scene.materials[m->name] = *m;  // its moduli and density (a GroundMaterial is a Material)
 }
 
 struct Timing {

@@ -18,6 +18,7 @@
 #include "core/stage_log.hpp"
 #include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
+#include "tests/unit/make_material.hpp"
 
 using namespace clatter;
 
@@ -28,7 +29,7 @@ io::Scene table_setting(std::size_t n_objects, double duration_s) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   io::Scene s;
   s.path = "generated table setting";
-  s.materials["glass"] = {6.2e10, 0.2, true, 1.0, 1e-7};
+  s.materials["glass"] = clatter::test::damped(6.2e10, 0.2, 1.0, 1e-7);
   s.ground_material = "glass";
   const double pi = 3.14159265358979323846;
   for (std::size_t i = 0; i < n_objects; ++i) {

@@ -18,12 +18,6 @@ namespace {
 using model::GroundMaterial;
 using model::GroundSeries;
 
-// Wave speeds from the moduli (kernels/ground/lamb.hpp's HalfSpace; io/ does not include kernels/).
-double shear_speed_m_s(const GroundMaterial& m) { return std::sqrt(m.shear_modulus_pa() / m.rho_kg_m3); }
-double pressure_speed_m_s(const GroundMaterial& m) {
-  return shear_speed_m_s(m) * std::sqrt(2 * (1 - m.poisson) / (1 - 2 * m.poisson));
-}
-
 // The ragged series of one grid (a material's, or a task's row) under group `g`: index arrays
 // [n] and the samples concatenated in `pi`, in series order.
 void write_series(File& f, const std::string& g, const std::vector<GroundSeries>& series) {
@@ -105,8 +99,8 @@ void write_material(File& f, const std::string& g, const GroundMaterial& m, std:
   write_attribute<double>(f, g, "poisson", m.poisson);
   write_attribute<double>(f, g, "rho_kg_m3", m.rho_kg_m3);
   write_attribute(f, g, "source", m.source);
-  write_attribute<double>(f, g, "shear_speed_m_s", shear_speed_m_s(m));
-  write_attribute<double>(f, g, "pressure_speed_m_s", pressure_speed_m_s(m));
+  write_attribute<double>(f, g, "shear_speed_m_s", m.shear_speed_m_s());
+  write_attribute<double>(f, g, "pressure_speed_m_s", m.pressure_speed_m_s());
   write_dataset<double>(f, g + "/elevation_rad", m.elevation_rad, {m.elevation_rad.size()}, "rad", true);
   write_dataset<double>(f, g + "/eta", m.eta, {m.eta.size()}, "1", true);
   write_series(f, g, m.series);
@@ -129,8 +123,8 @@ GroundMaterial read_material(const File& f, const std::string& g, const std::str
   m.rho_kg_m3 = read_positive(f, g, "rho_kg_m3");
   m.source = read_string_attribute(f, g, "source");
   // The derived speeds are what an h5py reader sees: they must be the moduli's.
-  const std::pair<const char*, double> derived[] = {{"shear_speed_m_s", shear_speed_m_s(m)},
-                                                    {"pressure_speed_m_s", pressure_speed_m_s(m)}};
+  const std::pair<const char*, double> derived[] = {{"shear_speed_m_s", m.shear_speed_m_s()},
+                                                    {"pressure_speed_m_s", m.pressure_speed_m_s()}};
   for (const auto& [attr, want] : derived) {
     const double found = read_attribute<double>(f, g, attr);
     if (!(std::abs(found - want) <= 1e-9 * want))

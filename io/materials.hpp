@@ -1,8 +1,12 @@
 #pragma once
-// The materials table of the modal soundbank (configs/materials.toml, docs/materials.md): one
-// TOML table per material with the keys of model::Material. Every key is checked; any violation
-// throws InputError with one line naming the file and line, the material and key, and the value,
-// e.g. "materials.toml:12: glass.poisson = 0.7: must be in (-1, 0.5)".
+// The one materials table of Clatter (configs/materials.toml, docs/materials.md), read into
+// model::Material for every program: the modal bank, the ground bank, clatter-sim. One TOML table
+// per material; rho_kg_m3, youngs_pa, poisson and source are required, the Rayleigh pair
+// (rayleigh_alpha_1_s, rayleigh_beta_s: both or neither) and the fracture data
+// (fracture_energy_j_m2, tensile_strength_pa) optional. Every key is checked (its range by
+// model::material_rule); any violation throws InputError with one line naming the file and line,
+// the material and key, and the value, e.g.
+// "materials.toml:12: glass.poisson = 0.7: must be in (-1, 0.5)".
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,6 +25,10 @@ inline constexpr const char* kBuiltinMaterialsSource = "configs/materials.toml (
 
 // The built-in table, parsed once.
 const std::vector<model::Material>& builtin_materials();
+
+// The table at `path` ("another materials file in the same format"), or the built-in one when
+// `path` is empty; `source` is set to the name messages use for it.
+std::vector<model::Material> read_materials(const std::string& path, std::string& source);
 
 // The material called `name`; InputError "SOURCE: unknown material 'NAME' (known: a, b, ...)".
 const model::Material& find_material(const std::vector<model::Material>& materials, const std::string& name,

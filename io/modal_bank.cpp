@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/errors.hpp"
 #include "io/modal_transfer.hpp"
@@ -214,8 +215,9 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   write_attribute<double>(file, "/material", "rho_kg_m3", h.material.rho_kg_m3);
   write_attribute<double>(file, "/material", "youngs_pa", h.material.youngs_pa);
   write_attribute<double>(file, "/material", "poisson", h.material.poisson);
-  write_attribute<double>(file, "/material", "rayleigh_alpha_1_s", h.material.rayleigh_alpha_1_s);
-  write_attribute<double>(file, "/material", "rayleigh_beta_s", h.material.rayleigh_beta_s);
+  if (!h.material.damping) throw std::invalid_argument("modal bank: material '" + h.material.name + "' has no Rayleigh damping");
+  write_attribute<double>(file, "/material", "rayleigh_alpha_1_s", h.material.damping->alpha_1_s);
+  write_attribute<double>(file, "/material", "rayleigh_beta_s", h.material.damping->beta_s);
   create_group(file, "/settings");
   write_attribute<double>(file, "/settings", "f_max_multiple", h.solve.f_max_multiple);
   write_attribute<double>(file, "/settings", "elements_per_wavelength", h.elements_per_wavelength);
@@ -253,11 +255,10 @@ model::ModalBank read_modal_bank(const std::string& path) {
   m.rho_kg_m3 = read_attribute<double>(file, "/material", "rho_kg_m3");
   m.youngs_pa = read_attribute<double>(file, "/material", "youngs_pa");
   m.poisson = read_attribute<double>(file, "/material", "poisson");
-  m.rayleigh_alpha_1_s = read_attribute<double>(file, "/material", "rayleigh_alpha_1_s");
-  m.rayleigh_beta_s = read_attribute<double>(file, "/material", "rayleigh_beta_s");
-  if (!(m.rho_kg_m3 > 0) || !(m.youngs_pa > 0) || !(m.poisson > -1 && m.poisson < 0.5))
-    throw InputError(fmt::format("{}: /material: rho {} kg/m^3, E {} Pa, nu {}: not an elastic material", path,
-                                 m.rho_kg_m3, m.youngs_pa, m.poisson));
+  m.damping = model::RayleighDamping{read_attribute<double>(file, "/material", "rayleigh_alpha_1_s"),
+                                     read_attribute<double>(file, "/material", "rayleigh_beta_s")};
+  if (const std::string bad = model::check_material(m); !bad.empty())
+    throw InputError(fmt::format("{}: /material: {}: not an elastic material", path, bad));
   // The solve's settings as stored; max_iterations and nev_per_shift are not (they change the work,
   // not the result) and read back as 0.
   h.solve.f_max_multiple = read_attribute<double>(file, "/settings", "f_max_multiple");

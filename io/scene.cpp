@@ -71,15 +71,28 @@ double unit_quaternion_norm(const std::array<double, 4>& q, const std::string& w
 }
 
 // The optional Rayleigh pair of a material: both keys or neither.
-void rayleigh_damping(const json& m, const std::string& w, SceneMaterial& mat) {
+// A material's number (its JSON value and "FILE: materials.NAME.KEY"), checked by the one rule of
+// its table key (model::material_rule).
+double material_number(const json& v, const std::string& where, const char* table_key) {
+  const double x = number(v, where);
+  if (const char* rule = model::material_rule(table_key, x)) bad(where, fmt::format("{}: {}", x, rule));
+  return x;
+}
+
+// One named material of a scene: E and nu required, the Rayleigh pair (both or neither) and the
+// density optional.
+model::Material scene_material(const std::string& name, const json& m, const std::string& w) {
+  model::Material mat;
+  mat.name = name;
+  mat.youngs_pa = material_number(need(m, "youngs_modulus_pa", w), w + ".youngs_modulus_pa", "youngs_pa");
+  mat.poisson = material_number(need(m, "poisson_ratio", w), w + ".poisson_ratio", "poisson");
   const bool alpha = m.contains("rayleigh_alpha_1_s"), beta = m.contains("rayleigh_beta_s");
   if (alpha != beta) bad(w, "give both rayleigh_alpha_1_s and rayleigh_beta_s, or neither");
-  if (!alpha) return;
-  mat.has_damping = true;
-  mat.rayleigh_alpha_1_s = number(m["rayleigh_alpha_1_s"], w + ".rayleigh_alpha_1_s");
-  mat.rayleigh_beta_s = number(m["rayleigh_beta_s"], w + ".rayleigh_beta_s");
-  if (!(mat.rayleigh_alpha_1_s >= 0)) bad(w + ".rayleigh_alpha_1_s", fmt::format("{}: must be >= 0", mat.rayleigh_alpha_1_s));
-  if (!(mat.rayleigh_beta_s >= 0)) bad(w + ".rayleigh_beta_s", fmt::format("{}: must be >= 0", mat.rayleigh_beta_s));
+  if (alpha)
+    mat.damping = model::RayleighDamping{material_number(m["rayleigh_alpha_1_s"], w + ".rayleigh_alpha_1_s", "rayleigh_alpha_1_s"),
+                                         material_number(m["rayleigh_beta_s"], w + ".rayleigh_beta_s", "rayleigh_beta_s")};
+  if (m.contains("density_kg_m3")) mat.rho_kg_m3 = material_number(m["density_kg_m3"], w + ".density_kg_m3", "rho_kg_m3");
+  return mat;
 }
 
 Pose pose(const json& j, const std::string& where) {
@@ -118,17 +131,7 @@ Scene read_setting(const json& root, const std::string& path) {
   const json& materials = need(root, "materials", path);
   if (!materials.is_object()) bad(path + ": materials", std::string("expected an object of named materials, found ") + materials.type_name());
   for (const auto& [name, m] : materials.items()) {
-    const std::string w = path + ": materials." + name;
-    SceneMaterial mat{number(need(m, "youngs_modulus_pa", w), w + ".youngs_modulus_pa"),
-                      number(need(m, "poisson_ratio", w), w + ".poisson_ratio")};
-    if (!(mat.youngs_modulus_pa > 0)) bad(w + ".youngs_modulus_pa", fmt::format("{}: must be > 0", mat.youngs_modulus_pa));
-    if (!(mat.poisson_ratio >= 0 && mat.poisson_ratio < 0.5)) bad(w + ".poisson_ratio", fmt::format("{}: must be in [0, 0.5)", mat.poisson_ratio));
-    rayleigh_damping(m, w, mat);
-    if (m.contains("density_kg_m3")) {
-      mat.density_kg_m3 = number(m["density_kg_m3"], w + ".density_kg_m3");
-      if (!(mat.density_kg_m3 > 0)) bad(w + ".density_kg_m3", fmt::format("{}: must be > 0", mat.density_kg_m3));
-    }
-    scene.materials[name] = mat;
+    scene.materials[name] = scene_material(name, m, path + ": materials." + name);
   }
   const json& g = need(root, "ground_material", path);
   if (!g.is_string() || !scene.materials.count(g.get<std::string>())) bad(path + ": ground_material", g.dump() + " is not in materials");

@@ -7,18 +7,15 @@
 #include <string>
 #include <vector>
 
+#include "model/material.hpp"
+
 namespace clatter::io {
 
-struct SceneMaterial {
-  double youngs_modulus_pa = 0, poisson_ratio = 0;
-  // Rayleigh damping C = alpha M + beta K of the material's modes; only modal sound needs it, so
-  // it is optional (both or neither), and clatter-synth refuses a modal object without it.
-  bool has_damping = false;
-  double rayleigh_alpha_1_s = 0, rayleigh_beta_s = 0;
-  // Optional (0: not given): only the ground sound needs the ground's density, and takes the
-  // ground bank's when the scene gives none (docs/scene-format.md).
-  double density_kg_m3 = 0;
-};
+// A scene's materials are model::Material, keyed by name (the JSON keys youngs_modulus_pa,
+// poisson_ratio, density_kg_m3 and the Rayleigh pair, docs/scene-format.md). Optional there: the
+// Rayleigh damping (only modal sound needs it; clatter-synth refuses a modal object without it)
+// and the density (rho_kg_m3 = 0: not given; only the ground sound needs the ground's, and takes
+// the ground bank's when the scene gives none). `source` is empty.
 
 struct SceneObject {
   int id = 0;
@@ -65,7 +62,7 @@ struct SceneEvent {
 
 struct Scene {
   std::string path;  // for messages
-  std::map<std::string, SceneMaterial> materials;
+  std::map<std::string, model::Material> materials;
   std::string ground_material;
   std::vector<SceneObject> objects;
   std::vector<SceneEvent> events;  // sorted by time

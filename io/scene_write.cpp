@@ -18,10 +18,10 @@ using nlohmann::ordered_json;
 
 ordered_json pose_json(const Pose& p) { return {{"position_m", p.position_m}, {"orientation_wxyz", p.orientation_wxyz}}; }
 
-ordered_json material_json(const SceneMaterial& m) {
-  ordered_json j = {{"youngs_modulus_pa", m.youngs_modulus_pa}, {"poisson_ratio", m.poisson_ratio}};
-  if (m.has_damping) j["rayleigh_alpha_1_s"] = m.rayleigh_alpha_1_s, j["rayleigh_beta_s"] = m.rayleigh_beta_s;
-  if (m.density_kg_m3 > 0) j["density_kg_m3"] = m.density_kg_m3;
+ordered_json material_json(const model::Material& m) {
+  ordered_json j = {{"youngs_modulus_pa", m.youngs_pa}, {"poisson_ratio", m.poisson}};
+  if (m.damping) j["rayleigh_alpha_1_s"] = m.damping->alpha_1_s, j["rayleigh_beta_s"] = m.damping->beta_s;
+  if (m.rho_kg_m3 > 0) j["density_kg_m3"] = m.rho_kg_m3;
   return j;
 }
 

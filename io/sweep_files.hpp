@@ -1,5 +1,5 @@
 #pragma once
-// The files of a sweep (jobs/sweep.hpp, docs/formats.md "Sweep task files"): one task file per
+// The files of a sweep (sweep/sweep.hpp, docs/formats.md "Sweep task files"): one task file per
 // finished task in the results folder, and the /sweep group of every bank a sweep builds.
 //   TASK.h5  format clatter-sweep-task v1; root attributes sweep_id, task, status ("done", payload
 //            in /result; or "failed", with its reason) and content_hash over everything else.

@@ -1,7 +1,7 @@
 #pragma once
-// TOML reading shared by the schema-checked config (config.cpp) and the materials tables
-// (materials.cpp, ground_materials.cpp), so all give the same one-line messages: the parse with
-// its UTF-8 guard, and the pieces every message is made of. Private to io/: it includes toml11.
+// TOML reading shared by the schema-checked config (config.cpp) and the materials reader
+// (materials.cpp), so both give the same one-line messages: the parse with its UTF-8 guard, and
+// the pieces every message is made of. Private to io/: it includes toml11.
 #include <algorithm>
 #include <cstddef>
 #include <string>

@@ -6,11 +6,10 @@
 
 namespace clatter::kernels {
 
-double hertz_contact_time_s(double m, double r, const ElasticMaterial& a, const ElasticMaterial& b, double v) {
-  if (!(m > 0) || !(r > 0) || !(v > 0) || !(a.youngs_modulus_pa > 0) || !(b.youngs_modulus_pa > 0))
+double hertz_contact_time_s(double m, double r, const model::Material& a, const model::Material& b, double v) {
+  if (!(m > 0) || !(r > 0) || !(v > 0) || !(a.youngs_pa > 0) || !(b.youngs_pa > 0))
     throw std::invalid_argument("hertz_contact_time_s: mass, radius, speed and moduli must be > 0");
-  const double inv_e = (1 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus_pa +
-                       (1 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus_pa;
+  const double inv_e = (1 - a.poisson * a.poisson) / a.youngs_pa + (1 - b.poisson * b.poisson) / b.youngs_pa;
   const double e = 1 / inv_e;
   return 2.868 * std::pow(m * m / (r * e * e * v), 0.2);
 }

@@ -5,19 +5,17 @@
 #include <array>
 #include <numbers>
 
-namespace clatter::kernels {
+#include "model/material.hpp"
 
-struct ElasticMaterial {
-  double youngs_modulus_pa = 0;
-  double poisson_ratio = 0;
-};
+namespace clatter::kernels {
 
 // Hertz (Johnson, Contact Mechanics, 1985, section 11.4): two elastic bodies meeting at relative
 // normal speed v_n with effective mass m* (1/m* = 1/m1 + 1/m2; the ground: m2 = infinity) and
 // effective radius R* (1/R* = 1/R1 + 1/R2; a flat ground: R2 = infinity) stay in contact for
 //   tau = 2.868 (m*^2 / (R* E*^2 v_n))^(1/5),   1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
-double hertz_contact_time_s(double effective_mass_kg, double effective_radius_m, const ElasticMaterial& a,
-                            const ElasticMaterial& b, double normal_speed_m_s);
+// Only E and nu of the materials enter.
+double hertz_contact_time_s(double effective_mass_kg, double effective_radius_m, const model::Material& a,
+                            const model::Material& b, double normal_speed_m_s);
 
 // S(t; t0, tau) of eq. (3): sin(pi (t - t0) / tau) on [t0, t0 + tau], else 0.
 double half_sine(double t_s, double t0_s, double tau_s);

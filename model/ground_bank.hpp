@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "model/material.hpp"
 #include "model/sweep_status.hpp"
 
 namespace clatter::model {
@@ -26,14 +27,13 @@ struct GroundSeries {
   std::vector<double> pi;
 };
 
-struct GroundMaterial {
-  std::string name;
-  double youngs_pa = 0, poisson = 0, rho_kg_m3 = 0;
-  std::string source;                     // citation of the values
+// One ground of the bank: the material (name, moduli, density, source; the bank stores no damping
+// or fracture data) and its grid of series. It is a model::Material, so a scene's ground and the
+// bank's are compared as the same type (synth/ground_source.cpp).
+struct GroundMaterial : Material {
   std::vector<double> elevation_rad;      // ascending, in (0, pi/2]
   std::vector<double> eta;                // ascending, > 0 (log-spaced)
   std::vector<GroundSeries> series;       // [i_elevation * eta.size() + i_eta]
-  double shear_modulus_pa() const { return youngs_pa / (2 * (1 + poisson)); }
   const GroundSeries& at(std::size_t i_elevation, std::size_t i_eta) const { return series[i_elevation * eta.size() + i_eta]; }
 };
 

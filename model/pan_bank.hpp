@@ -1,7 +1,7 @@
 #pragma once
 // The PAN soundbank (Chadwick et al. 2012, sections 4-5) as plain data: the one definition that
 // io/ reads and writes (format "clatter-pan-bank", docs/bank-format.md), kernels/pan fits and
-// evaluates, synth/ renders from and jobs/ builds. Numbers and vectors only; std only.
+// evaluates, synth/ renders from and banks/pan/ builds. Numbers and vectors only; std only.
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// How complete the sweep that built a bank was (every bank kind built by jobs/sweep.hpp has one):
+// How complete the sweep that built a bank was (every bank kind built by sweep/sweep.hpp has one):
 // the one definition io/ reads and writes as the bank's /sweep group (io/sweep_files.hpp).
 #include <cstdint>
 #include <string>

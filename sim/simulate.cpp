@@ -63,14 +63,14 @@ Solid solid_of(const std::vector<Vec3>& vertices, const std::vector<std::array<i
   return s;
 }
 
-io::SceneMaterial scene_material(const model::Material& m, bool with_density) {
-  io::SceneMaterial s;
-  s.youngs_modulus_pa = m.youngs_pa;
-  s.poisson_ratio = m.poisson;
-  s.has_damping = true;
-  s.rayleigh_alpha_1_s = m.rayleigh_alpha_1_s;
-  s.rayleigh_beta_s = m.rayleigh_beta_s;
-  if (with_density) s.density_kg_m3 = m.rho_kg_m3;
+// The table's material as the scene gives it: the bodies' density is their mass over their volume,
+// so only the ground's is written (the ground sound checks it against its bank's). The fracture data
+// and the source stay in the table.
+model::Material scene_material(const model::Material& m, bool with_density) {
+  model::Material s = m;
+  if (!with_density) s.rho_kg_m3 = 0;
+  s.fracture_energy_j_m2.reset(), s.tensile_strength_pa.reset();
+  s.source.clear();
   return s;
 }
 

@@ -7,7 +7,7 @@
 //   check_replace  a merge never replaces a bank holding more of the same
 //   sweep, nor a bank of
 //                  another sweep (or no bank at all), unless --force.
-// Every bank kind built by the sweep engine (jobs/sweep.hpp) goes through both.
+// Every bank kind built by the sweep engine (sweep/sweep.hpp) goes through both.
 #include <mpi.h>
 
 #include <memory>

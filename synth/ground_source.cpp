@@ -97,7 +97,7 @@ const model::GroundMaterial& bank_material(const model::GroundBank& bank, const 
                                scene.ground_material, bank_name, names.empty() ? "none" : names));
 }
 
-// The scene's value of a ground constant against the bank's, within kModulusTolerance.
+// One constant of the ground: the scene's value against the bank's, within kModulusTolerance.
 void check_constant(const io::Scene& scene, const char* key, double scene_value, double bank_value, const std::string& bank_name) {
   const double relative = std::abs(scene_value - bank_value) / std::abs(bank_value);
   if (relative <= kModulusTolerance) return;
@@ -105,6 +105,14 @@ void check_constant(const io::Scene& scene, const char* key, double scene_value,
                                "bank's series hold for its own ground; give it within {} %",
                                scene.path, scene.ground_material, key, scene_value, bank_value, bank_name, scene.ground_material,
                                100 * relative, 100 * kModulusTolerance));
+}
+
+// The scene's ground against the bank's, both model::Material (the density only where the scene
+// gives one): the bank's series hold for its own ground only.
+void check_same_ground(const io::Scene& scene, const model::Material& given, const model::Material& bank, const std::string& bank_name) {
+  check_constant(scene, "youngs_modulus_pa", given.youngs_pa, bank.youngs_pa, bank_name);
+  check_constant(scene, "poisson_ratio", given.poisson, bank.poisson, bank_name);
+  if (given.rho_kg_m3 > 0) check_constant(scene, "density_kg_m3", given.rho_kg_m3, bank.rho_kg_m3, bank_name);
 }
 
 void check_grid(const model::GroundMaterial& m, const std::string& bank_name) {
@@ -127,10 +135,7 @@ GroundSource::GroundSource(model::GroundBank bank, std::string name) : bank_(std
 void GroundSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& /*models*/, int /*rate_hz*/) {
   const model::GroundMaterial& m = bank_material(bank_, name_, scene);
   check_grid(m, name_);
-  const io::SceneMaterial& given = scene.materials.at(scene.ground_material);
-  check_constant(scene, "youngs_modulus_pa", given.youngs_modulus_pa, m.youngs_pa, name_);
-  check_constant(scene, "poisson_ratio", given.poisson_ratio, m.poisson, name_);
-  if (given.density_kg_m3 > 0) check_constant(scene, "density_kg_m3", given.density_kg_m3, m.rho_kg_m3, name_);
+  check_same_ground(scene, scene.materials.at(scene.ground_material), m, name_);
   for (std::size_t l = 0; l < scene.listeners_m.size(); ++l) {
     const Vec3& x = scene.listeners_m[l];
     if (!(x[2] > 0))
@@ -139,13 +144,12 @@ void GroundSource::begin(const io::Scene& scene, const std::vector<ObjectModel>&
                                    scene.path, l, x[0], x[1], x[2]));
   }
   // The series are for the bank's ground (its nu and c_s), so the amplitude takes the bank's too.
-  kernels::ground::HalfSpace ground;
   try {
-    ground = kernels::ground::half_space(m.youngs_pa, m.poisson, m.rho_kg_m3);
+    kernels::ground::check_lamb_ground(m);
   } catch (const std::invalid_argument& e) {
     throw InputError(fmt::format("{}: ground material '{}': {}", name_, m.name, e.what()));
   }
-  medium_ = {&m, ground, ground.shear_speed_m_s(), bank_.rho0_kg_m3};
+  medium_ = {&m, m.shear_speed_m_s(), bank_.rho0_kg_m3};
   log_eta_.clear();
   for (double eta : m.eta) log_eta_.push_back(std::log(eta));
   stats_ = {};
@@ -201,7 +205,7 @@ void GroundSource::add_at(const Impact& im, double j_n_s, const Vec3& listener, 
   const double t_hat0 = (static_cast<double>(n0) / rate - im.t_s) / to_s;
   for (std::size_t q = 0; q < 4; ++q) accumulate(m.at(ie[q], it[q]), w[q], t_hat0, dt_hat, pi_);
   // Box average of p = A dPi/dt_hat over [t_n, t_n+1): A (Pi(t_n+1) - Pi(t_n)) / dt_hat.
-  const double gain = kernels::ground::pressure_scale(medium_.ground, medium_.air_density_kg_m3, j_n_s, d_m) / dt_hat;
+  const double gain = kernels::ground::pressure_scale(*medium_.material, medium_.air_density_kg_m3, j_n_s, d_m) / dt_hat;
   for (std::size_t n = n0; n < n1; ++n) out[n] += gain * (pi_[n - n0 + 1] - pi_[n - n0]);
 }
 

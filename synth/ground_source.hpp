@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "kernels/ground/lamb.hpp"
 #include "model/ground_bank.hpp"
 #include "synth/sources.hpp"
 
@@ -28,10 +27,9 @@ struct GroundStats {
   std::size_t sustained_too_slow = 0;
 };
 
-// The ground as the source uses it: the bank's material, as a half-space, and the bank's air.
+// The ground as the source uses it: the bank's material (the half-space) and the bank's air.
 struct GroundMedium {
   const model::GroundMaterial* material = nullptr;
-  kernels::ground::HalfSpace ground;
   double shear_speed_m_s = 0, air_density_kg_m3 = 0;
 };
 

@@ -37,14 +37,14 @@ Solid solid_of(const std::string& mesh_path, const std::string& where) {
 // omega_0 of the object's solid in its material, computed once per mesh file and material.
 double base_frequency_hz(const io::Scene& scene, const io::SceneObject& o, const Solid& solid,
                          std::map<std::tuple<std::string, double, double, double>, double>& cache) {
-  const io::SceneMaterial& m = scene.materials.at(o.material);
+  const model::Material& m = scene.materials.at(o.material);
   const double rho = o.mass_kg / o.volume_m3;
-  const auto key = std::make_tuple(o.mesh_path, m.youngs_modulus_pa, m.poisson_ratio, rho);
+  const auto key = std::make_tuple(o.mesh_path, m.youngs_pa, m.poisson, rho);
   const auto it = cache.find(key);
   if (it != cache.end()) return it->second;
   try {
-    const double f = kernels::fem::lowest_free_mode(solid.mesh.vertices_m, solid.mesh.triangles, m.youngs_modulus_pa,
-                                                    m.poisson_ratio, rho).frequency_hz;
+    const double f = kernels::fem::lowest_free_mode(solid.mesh.vertices_m, solid.mesh.triangles, m.youngs_pa, m.poisson,
+                                                    rho).frequency_hz;
     return cache[key] = f;
   } catch (const std::invalid_argument& e) {
     throw InputError(fmt::format("{}.mesh: {}: its lowest mode: {}", o.where, o.mesh_path, e.what()));

@@ -59,21 +59,21 @@ ModalSource::~ModalSource() = default;
 
 // The bank of the object's nu class: the nearest nu within the tolerance (docs/materials.md).
 std::size_t ModalSource::bank_for(const io::Scene& scene, const io::SceneObject& o) const {
-  const io::SceneMaterial& m = scene.materials.at(o.material);
+  const model::Material& m = scene.materials.at(o.material);
   std::size_t best = 0;
   double best_d = INFINITY;
   std::string known;
   for (std::size_t b = 0; b < banks_.size(); ++b) {
     const model::Material& bm = banks_[b].header.material;
-    const double d = std::abs(bm.poisson - m.poisson_ratio);
+    const double d = std::abs(bm.poisson - m.poisson);
     if (d < best_d) best_d = d, best = b;
     known += fmt::format("{}{} (nu {}, {})", b ? ", " : "", bm.name, bm.poisson, names_[b]);
   }
   if (!(best_d <= options_.poisson_tolerance))
     throw InputError(fmt::format("{}: material '{}' (poisson_ratio {}) has no modal bank: the banks given serve nu within {} "
                                  "of theirs: {}",
-                                 o.where, o.material, m.poisson_ratio, options_.poisson_tolerance, known));
-  if (!m.has_damping)
+                                 o.where, o.material, m.poisson, options_.poisson_tolerance, known));
+  if (!m.damping)
     throw InputError(fmt::format("{}: materials.{}: modal sound needs rayleigh_alpha_1_s and rayleigh_beta_s", scene.path, o.material));
   return best;
 }
@@ -88,9 +88,10 @@ ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& mo
   const model::ModalEntry& e = bank.entries[v.entry];
   const double pi = std::numbers::pi, omega_p0 = 2 * pi * e.frequencies_hz.front();
   const double unit_volume_m3 = 4.0 / 3.0 * pi * e.axes_m[0] * e.axes_m[1] * e.axes_m[2];
-  const io::SceneMaterial& mat = scene.materials.at(o.material);
-  const double rho_object = o.mass_kg / o.volume_m3;
-  const double cs_object = std::sqrt(mat.youngs_modulus_pa / (2 * (1 + mat.poisson_ratio) * rho_object));
+  // The object's own density (its mass over its volume), not the material's.
+  model::Material mat = scene.materials.at(o.material);
+  mat.rho_kg_m3 = o.mass_kg / o.volume_m3;
+  const double cs_object = mat.shear_speed_m_s();
   if (o.base_frequency_hz > 0) {
     v.base_frequency_hz = o.base_frequency_hz;
     v.base_frequency_from = o.base_frequency_from.empty() ? "scene" : o.base_frequency_from;
@@ -108,7 +109,7 @@ ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& mo
   v.band_short = e.frequencies_hz.back() / v.gamma < top_hz;
   for (std::size_t k = 0; k < e.modes(); ++k) {
     const double f_hz = e.frequencies_hz[k] / v.gamma, omega = 2 * pi * f_hz;
-    const double xi = 0.5 * (mat.rayleigh_alpha_1_s / omega + mat.rayleigh_beta_s * omega);
+    const double xi = mat.damping_ratio(omega);
     if (f_hz > top_hz)
       ++v.skipped_high;
     else if (f_hz < options_.min_frequency_hz)

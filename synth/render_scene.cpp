@@ -67,8 +67,7 @@ Contact event_contact(const io::Scene& scene, const io::SceneEvent& e, const Obj
     }
     const auto& mat_a = scene.materials.at(a->object->material);
     const auto& mat_b = b ? scene.materials.at(b->object->material) : scene.materials.at(scene.ground_material);
-    c.tau_s = kernels::hertz_contact_time_s(1 / inv_m, 1 / inv_r, {mat_a.youngs_modulus_pa, mat_a.poisson_ratio},
-                                            {mat_b.youngs_modulus_pa, mat_b.poisson_ratio}, e.normal_speed_m_s);
+    c.tau_s = kernels::hertz_contact_time_s(1 / inv_m, 1 / inv_r, mat_a, mat_b, e.normal_speed_m_s);
   }
   c.peak_force_n = kernels::half_sine_peak(j, c.tau_s);
   return c;

@@ -73,7 +73,7 @@ foreach(case
     "short_vector|short_vector.json: events[0].point_m: expected an array of 3 numbers"
     "duplicate_id|duplicate_id.json: objects[1].id: 1 is used twice"
     "huge_id|huge_id.json: objects[0].id: 4294967297: must be an integer in [1, 2147483647]"
-    "bad_poisson|bad_poisson.json: materials.rock.poisson_ratio: 0.5: must be in [0, 0.5)"
+    "bad_poisson|bad_poisson.json: materials.rock.poisson_ratio: 0.5: must be in (-1, 0.5)"
     "unknown_ground|unknown_ground.json: ground_material: \"lava\" is not in materials"
     "lifetime|lifetime.json: objects[1].destroyed_s: 0.2: must be after created_s = 0.5"
     "quaternion|quaternion.json: events[0].pose_a.orientation_wxyz|has norm 1.118|must be a unit quaternion"
@@ -179,12 +179,15 @@ add_test(NAME bad_results_corrupt_task_redone COMMAND ${expect_output}
 set_tests_properties(bad_results_corrupt_task_redone PROPERTIES FIXTURES_REQUIRED bad_results ENVIRONMENT "${CLATTER_MPI_ENV}"
                                                      LABELS unit)
 
-# the modal bank's config (jobs/modal_spec.cpp) and its materials table (io/materials.cpp)
+# the modal bank's config (banks/modal/modal_spec.cpp) and its materials table (io/materials.cpp)
 set(one_sphere "--set=patch.samples=[[0.5773502691896258, 0.5773502691896258, 0.5773502691896258]]")
 clatter_error_test(bad_modal_unknown_material 0 "unknown material 'unobtainium';known: glass"
                    modal --set material.name=unobtainium -o out.h5)
 clatter_error_test(bad_modal_poisson 0 "materials_bad_poisson.toml:5;rubberish.poisson = 0.5;(-1, 0.5)"
                    modal --set material.table=${bad_in}/materials_bad_poisson.toml --set material.name=rubberish -o out.h5)
+# a material of the table without Rayleigh damping (a ground's) has no modal bank
+clatter_error_test(bad_modal_undamped_material 0 "configs/materials.toml (built in): [soil]: missing key 'rayleigh_alpha_1_s'"
+                   modal --set material.name=soil -o out.h5)
 clatter_error_test(bad_modal_no_table 0 "no_such_table.toml;cannot open materials file"
                    modal --set material.table=no_such_table.toml -o out.h5)
 clatter_error_test(bad_modal_axes_order 0 "patch.samples[0] = [0.7, 0.5, 0.5];not ascending (a <= b <= c): 0.7, 0.5, 0.5"

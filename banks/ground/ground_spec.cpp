@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "core/errors.hpp"
-#include "io/ground_materials.hpp"
+#include "io/materials.hpp"
 #include "io/text_file.hpp"
 #include "kernels/ground/lamb.hpp"
 
@@ -26,11 +26,8 @@ constexpr double kSettleTime = 1.5;
 // A series longer than this is a config mistake (eta_min far below any contact), not a bank.
 constexpr double kMaxSamplesPerSeries = 1e7;
 
-io::StringList default_materials() {
-  io::StringList names;
-  for (const auto& m : io::builtin_ground_materials()) names.push_back(m.name);
-  return names;
-}
+// The eight grounds of Qu & James's poster (seed 004), all in configs/materials.toml.
+io::StringList default_materials() { return {"steel", "ceramic", "granite", "concrete", "wood", "plastic", "soil", "wax"}; }
 
 // A name that is safe as an HDF5 group and a task file name.
 bool plain_name(const std::string& name) {
@@ -59,10 +56,7 @@ std::vector<double> eta_grid(double eta_min, double eta_max, double per_octave) 
 }
 
 std::vector<model::GroundMaterial> read_materials(const io::Config& config, GroundSpec& spec) {
-  const std::string& table = config.string("ground.table");
-  spec.material_table = table.empty() ? io::kBuiltinGroundMaterialsSource : table;
-  const auto all = table.empty() ? io::builtin_ground_materials()
-                                 : io::parse_ground_materials(io::read_text_file(table, "ground materials file"), table);
+  const auto all = io::read_materials(config.string("ground.table"), spec.material_table);
   const auto& names = config.strings("ground.materials");
   if (names.empty()) throw InputError("ground.materials = []: a ground bank needs at least one material");
   std::vector<model::GroundMaterial> out;
@@ -70,14 +64,18 @@ std::vector<model::GroundMaterial> read_materials(const io::Config& config, Grou
     const std::string head = fmt::format("ground.materials[{}] = \"{}\": ", i, names[i]);
     if (std::count(names.begin(), names.end(), names[i]) > 1) throw InputError(head + "named more than once");
     try {
-      out.push_back(io::find_ground_material(all, names[i], spec.material_table));
+      // The bank keeps the moduli, density and source; no damping or fracture data.
+      model::GroundMaterial g;
+      static_cast<model::Material&>(g) = io::find_material(all, names[i], spec.material_table);
+      g.damping.reset(), g.fracture_energy_j_m2.reset(), g.tensile_strength_pa.reset();
+      out.push_back(std::move(g));
     } catch (const InputError& e) {
       throw InputError(head + e.what());
     }
     if (!plain_name(names[i])) throw InputError(head + "a bank's material name may hold only letters, digits, '_' and '-'");
     const auto& m = out.back();
     try {
-      kernels::ground::half_space(m.youngs_pa, m.poisson, m.rho_kg_m3);  // the kernel's own check, too
+      kernels::ground::check_lamb_ground(m);  // Lamb's closed form needs 0 < nu
     } catch (const std::invalid_argument& e) {
       throw InputError(fmt::format("{}: [{}]: {}", spec.material_table, m.name, e.what()));
     }
@@ -107,9 +105,9 @@ const io::Schema& ground_schema() {
   static const io::Schema schema{
       "clatter-bank ground: the ground bank (Lamb's problem, regularized, radiated by the Rayleigh integral)",
       {
-          {"ground.materials", default_materials(), "ground materials of the bank: tables of ground.table"},
-          {"ground.table", std::string(""), "ground materials file (TOML, docs/ground.md); empty: the built-in "
-                                            "configs/ground-materials.toml"},
+          {"ground.materials", default_materials(), "ground materials of the bank: tables of ground.table (each needs 0 < poisson)"},
+          {"ground.table", std::string(""), "another materials file in the format of configs/materials.toml "
+                                            "(docs/materials.md); empty: the built-in configs/materials.toml"},
           {"ground.elevations_deg", io::RealList{1, 2, 5, 10, 15, 20, 30, 45, 60, 75, 90},
            "listener elevations above the ground, ascending [deg]", {0.0, 90.0, true}},
           {"ground.eta_min", 1e-2,
@@ -148,10 +146,9 @@ GroundSpec make_ground_spec(const io::Config& config) {
 
 GroundWindow ground_window(const GroundSpec& spec, std::size_t material, std::size_t elevation) {
   const auto& m = spec.materials.at(material);
-  const auto ground = kernels::ground::half_space(m.youngs_pa, m.poisson, m.rho_kg_m3);
   const kernels::ground::LambSurface surface(m.poisson);
   GroundWindow w;
-  w.mach = ground.shear_speed_m_s() / spec.c0_m_s;
+  w.mach = m.shear_speed_m_s() / spec.c0_m_s;
   w.s_end = std::max(w.mach, surface.rayleigh_tau()) + kSettleTime;
   w.first_arrival = kernels::ground::first_arrival(surface, w.mach, spec.elevation_rad.at(elevation));
   w.lead_etas = kLeadEtas;

@@ -31,7 +31,7 @@ struct GroundSpec {
   kernels::ground::VolumeSettings volume;      // the Rayleigh integral's quadrature (the kernel's defaults)
 };
 
-// Reads the materials table (ground.table, or the built-in configs/ground-materials.toml) and
+// Reads the materials table (ground.table, or the built-in configs/materials.toml) and
 // checks every key and combination; InputError naming the key and value.
 GroundSpec make_ground_spec(const io::Config& config);
 

@@ -21,7 +21,6 @@ std::string degrees_text(const std::vector<double>& rad) {
 }
 
 std::string material_line(const model::GroundMaterial& m, double c0_m_s) {
-  const auto ground = kernels::ground::half_space(m.youngs_pa, m.poisson, m.rho_kg_m3);
   std::size_t samples = 0;
   double t_lo = std::numeric_limits<double>::infinity(), t_hi = -t_lo;
   for (const auto& s : m.series) {
@@ -32,8 +31,8 @@ std::string material_line(const model::GroundMaterial& m, double c0_m_s) {
   return fmt::format("  {:<9} E = {:.3g} Pa, nu = {}, rho = {} kg/m^3; c_s = {:.1f}, c_p = {:.1f} m/s, M = c_s/c0 = {:.3f}\n"
                      "            elevations [deg]: {}; {} etas in [{:.3g}, {:.3g}]; {} samples of Pi, "
                      "t_hat in [{:.3f}, {:.3f}]\n",
-                     m.name, m.youngs_pa, m.poisson, m.rho_kg_m3, ground.shear_speed_m_s(), ground.pressure_speed_m_s(),
-                     ground.shear_speed_m_s() / c0_m_s, degrees_text(m.elevation_rad), m.eta.size(), m.eta.front(),
+                     m.name, m.youngs_pa, m.poisson, m.rho_kg_m3, m.shear_speed_m_s(), m.pressure_speed_m_s(),
+                     m.shear_speed_m_s() / c0_m_s, degrees_text(m.elevation_rad), m.eta.size(), m.eta.front(),
                      m.eta.back(), samples, t_lo, t_hi);
 }
 

@@ -33,7 +33,6 @@ FemModel assemble_fem(MPI_Comm comm, const kernels::fem::Tet10Mesh& mesh, const 
   petsc::Layout layout = node_layout(comm, static_cast<PetscInt>(mesh.nodes_m.cols()));
   const auto n_elements = static_cast<long long>(mesh.elements.size());
   const long long e_begin = n_elements * rank / size, e_end = n_elements * (rank + 1) / size;
-  const auto elastic = kernels::fem::IsotropicMaterial::from_youngs(material.youngs_pa, material.poisson);
   std::vector<PetscInt> dofs;
   std::vector<double> k_blocks, m_blocks;
   dofs.reserve(static_cast<std::size_t>(e_end - e_begin) * 30);
@@ -46,7 +45,7 @@ FemModel assemble_fem(MPI_Comm comm, const kernels::fem::Tet10Mesh& mesh, const 
       x.col(i) = mesh.nodes_m.col(element[i]);
       for (int c = 0; c < 3; ++c) dofs.push_back(3 * element[i] + c);
     }
-    const RowMajor30 k = kernels::fem::tet10_stiffness(x, elastic);
+    const RowMajor30 k = kernels::fem::tet10_stiffness(x, material);
     const RowMajor30 m = kernels::fem::tet10_mass(x, material.rho_kg_m3);
     k_blocks.insert(k_blocks.end(), k.data(), k.data() + k.size());
     m_blocks.insert(m_blocks.end(), m.data(), m.data() + m.size());

@@ -74,11 +74,13 @@ const io::Schema& modal_schema() {
 ModalSpec make_modal_spec(const io::Config& config) {
   ModalSpec spec;
   auto& h = spec.header;
-  const std::string& table = config.string("material.table");
-  spec.material_table = table.empty() ? "built-in configs/materials.toml" : table;
-  const std::string text = table.empty() ? io::builtin_materials_toml() : io::read_text_file(table, "materials file");
-  h.material = io::find_material(io::parse_materials(text, spec.material_table), config.string("material.name"),
-                                 spec.material_table);
+  h.material = io::find_material(io::read_materials(config.string("material.table"), spec.material_table),
+                                 config.string("material.name"), spec.material_table);
+  // The damping is optional in the table (grounds have none), but a modal bank's modes need it.
+  if (!h.material.damping)
+    throw InputError(fmt::format("{}: [{}]: missing key 'rayleigh_alpha_1_s' (and 'rayleigh_beta_s'): a modal bank needs the "
+                                 "material's Rayleigh damping",
+                                 spec.material_table, h.material.name));
   h.min_ratio = config.real("patch.min_ratio");
   h.solve.f_max_multiple = config.real("modes.f_max_multiple");
   h.solve.cluster_gap = config.real("modes.cluster_gap");
@@ -127,8 +129,8 @@ std::string modal_sweep_toml(const io::Config& config, const ModalSpec& spec) {
   return config.to_toml() +
          fmt::format("\n# material '{}' as read from {}:\n# rho_kg_m3 = {:.17g}, youngs_pa = {:.17g}, poisson = {:.17g}, "
                      "rayleigh_alpha_1_s = {:.17g}, rayleigh_beta_s = {:.17g}\n",
-                     m.name, spec.material_table, m.rho_kg_m3, m.youngs_pa, m.poisson, m.rayleigh_alpha_1_s,
-                     m.rayleigh_beta_s);
+                     m.name, spec.material_table, m.rho_kg_m3, m.youngs_pa, m.poisson, m.damping.value().alpha_1_s,
+                     m.damping.value().beta_s);
 }
 
 std::vector<ModalTask> modal_tasks(const ModalSpec& spec) {

@@ -80,7 +80,7 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
                                 io::kModalBankFormat, io::kModalBankFormatVersion, bank.entries.size(), file_mb);
   out += fmt::format("  material:   {}: rho = {} kg/m^3, E = {:.4g} Pa, nu = {}, c_s = {:.1f} m/s; Rayleigh alpha = {} "
                      "1/s, beta = {} s\n", m.name, m.rho_kg_m3, m.youngs_pa, m.poisson, m.shear_speed_m_s(),
-                     m.rayleigh_alpha_1_s, m.rayleigh_beta_s);
+                     m.damping.value_or(model::RayleighDamping{}).alpha_1_s, m.damping.value_or(model::RayleighDamping{}).beta_s);
   out += fmt::format("  settings:   modes f_1 .. {} f_1; h = shear wavelength at f_max / {}; min a/c {}; multiplets "
                      "split by < {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", h.solve.f_max_multiple,
                      h.elements_per_wavelength, h.min_ratio, h.solve.cluster_gap, h.solve.tolerance,

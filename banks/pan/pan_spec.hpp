@@ -61,7 +61,7 @@ model::PanBankHeader pan_header(const PanSpec& spec);
 // Per direction: the proxy's support-distance alignment (kernels/pan/fit.hpp).
 std::vector<std::int32_t> proxy_delay_steps(const PanSpec& spec, std::size_t proxy);
 
-// The sweep (jobs/sweep.hpp): one task per proxy and solved field, named "pNNN-fK".
+// The sweep (sweep/sweep.hpp): one task per proxy and solved field, named "pNNN-fK".
 struct PanTask {
   std::size_t proxy = 0;
   int field = 1;

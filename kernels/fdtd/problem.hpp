@@ -25,7 +25,7 @@ std::optional<Scheme> scheme_from_name(std::string_view name);
 inline constexpr int kBlendCells = 8;
 inline int blend_cells(Scheme s, int pml_cells) { return s == Scheme::me4 && pml_cells > 0 ? kBlendCells : 0; }
 
-// Everything one FDTD solve needs, in SI units. Built and validated by jobs/solve_job.cpp.
+// Everything one FDTD solve needs, in SI units. Built and validated by banks/pan/solve_spec.cpp.
 struct Problem {
   Grid grid;
   double c_m_s = 343.2;

@@ -31,7 +31,7 @@ Eigen::SparseMatrix<double> assemble(const Tet10Mesh& mesh, ElementMatrix elemen
 
 }  // namespace
 
-Eigen::SparseMatrix<double> assemble_stiffness(const Tet10Mesh& mesh, const IsotropicMaterial& material,
+Eigen::SparseMatrix<double> assemble_stiffness(const Tet10Mesh& mesh, const model::Material& material,
                                                const TetQuadrature& rule) {
   return assemble(mesh, [&](const Tet10Coords& x) { return tet10_stiffness(x, material, rule); });
 }

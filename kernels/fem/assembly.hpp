@@ -17,7 +17,7 @@ struct Tet10Mesh {
 };
 
 // Node-major global degrees of freedom (3 * node + component), like the element's.
-Eigen::SparseMatrix<double> assemble_stiffness(const Tet10Mesh& mesh, const IsotropicMaterial& material,
+Eigen::SparseMatrix<double> assemble_stiffness(const Tet10Mesh& mesh, const model::Material& material,
                                                const TetQuadrature& rule = keast_degree5());
 Eigen::SparseMatrix<double> assemble_mass(const Tet10Mesh& mesh, double rho_kg_m3,
                                           const TetQuadrature& rule = keast_degree5());

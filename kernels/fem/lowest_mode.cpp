@@ -50,18 +50,6 @@ constexpr double kDropRatio = 1e-8;    // a new direction this much shorter than
 constexpr double kGramDrop = 1e-12;    // LOBPCG: Gram eigenvalues below this (relative) are dependence
 constexpr int kPowerIterations = 20;   // for the smoother's damping
 
-void check_material(double youngs_pa, double poisson, double rho_kg_m3) {
-  if (!(youngs_pa > 0) || !std::isfinite(youngs_pa))
-    throw std::invalid_argument("lowest_free_mode: Young's modulus must be positive (" + std::to_string(youngs_pa) +
-                                " Pa)");
-  if (!(poisson > -1 && poisson < 0.5))
-    throw std::invalid_argument("lowest_free_mode: Poisson's ratio must be in (-1, 0.5) (" + std::to_string(poisson) +
-                                ")");
-  if (!(rho_kg_m3 > 0) || !std::isfinite(rho_kg_m3))
-    throw std::invalid_argument("lowest_free_mode: density must be positive (" + std::to_string(rho_kg_m3) +
-                                " kg/m^3)");
-}
-
 // A reproducible pseudo-random value in [-1, 1) (splitmix64): start vectors must not depend on a
 // library's distribution algorithm, or results would differ between standard libraries.
 double hashed_uniform(std::uint64_t i) {
@@ -351,7 +339,10 @@ void lobpcg(const Pencil& p, const TwoLevel& t, MatrixXd x, const LowestModeSett
 LowestMode lowest_free_mode(const std::vector<std::array<double, 3>>& vertices_m,
                             const std::vector<std::array<int, 3>>& triangles, double youngs_pa, double poisson,
                             double rho_kg_m3, const LowestModeSettings& settings) {
-  check_material(youngs_pa, poisson, rho_kg_m3);
+  model::Material material;
+  material.youngs_pa = youngs_pa, material.poisson = poisson, material.rho_kg_m3 = rho_kg_m3;
+  if (const std::string bad = model::check_material(material); !bad.empty())
+    throw std::invalid_argument("lowest_free_mode: " + bad);
   if (!(settings.tolerance > 0) || settings.max_iterations < 1 || settings.block_size < 2)
     throw std::invalid_argument("lowest_free_mode: need tolerance > 0, max_iterations >= 1, block_size >= 2");
   double h_m = settings.edge_length_m;
@@ -367,13 +358,12 @@ LowestMode lowest_free_mode(const std::vector<std::array<double, 3>>& vertices_m
     for (int k = 0; k < 4; ++k) corners.col(k) = mesh.nodes_m.col(e[k]);
     out.volume_m3 += tet10_volume_m3(tet10_straight(corners), keast_degree2());
   }
-  const IsotropicMaterial material = IsotropicMaterial::from_youngs(youngs_pa, poisson);
   // Straight elements: the stiffness integrand is quadratic, the mass's quartic.
   const Pencil fine(assemble_stiffness(mesh, material, keast_degree2()), assemble_mass(mesh, rho_kg_m3), mesh.nodes_m);
   const Coarse coarse = coarse_space(mesh);
   const Sparse& pr = coarse.prolongation;
   const Pencil linear(RowSparse(pr.transpose() * fine.k * pr), RowSparse(pr.transpose() * fine.m * pr), coarse.nodes_m);
-  const double c_s_m_s = std::sqrt(material.shear_modulus_pa / rho_kg_m3);
+  const double c_s_m_s = material.shear_speed_m_s();
   const double d_m = (mesh.nodes_m.rowwise().maxCoeff() - mesh.nodes_m.rowwise().minCoeff()).norm();
   const double shift_s2 = kShiftPerSpeed2 * (c_s_m_s / d_m) * (c_s_m_s / d_m);
   const Eigen::SimplicialLDLT<Sparse> coarse_shifted(Sparse(linear.k + shift_s2 * linear.m));

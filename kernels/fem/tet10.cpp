@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <string>
+#include <utility>
 
 namespace clatter::kernels::fem {
 namespace {
@@ -64,13 +65,6 @@ Tet10Coords tet10_straight(const Eigen::Matrix<double, 3, 4>& v) {
 
 Eigen::Matrix3d tet10_jacobian(const Tet10Coords& x, const RefPoint& p) { return x * tet10_shape_gradient(p); }
 
-IsotropicMaterial IsotropicMaterial::from_youngs(double e_pa, double nu) {
-  if (!(e_pa > 0) || !(nu > -1 && nu < 0.5))
-    throw std::invalid_argument("IsotropicMaterial: need E > 0 and -1 < nu < 1/2 (E = " + std::to_string(e_pa) +
-                                " Pa, nu = " + std::to_string(nu) + ")");
-  return {e_pa * nu / ((1 + nu) * (1 - 2 * nu)), e_pa / (2 * (1 + nu))};
-}
-
 double tet10_volume_m3(const Tet10Coords& x, const TetQuadrature& rule) {
   double v = 0;
   for (std::size_t q = 0; q < rule.points.size(); ++q)
@@ -78,12 +72,16 @@ double tet10_volume_m3(const Tet10Coords& x, const TetQuadrature& rule) {
   return v;
 }
 
-Tet10Matrix tet10_stiffness(const Tet10Coords& x, const IsotropicMaterial& m, const TetQuadrature& rule) {
+Tet10Matrix tet10_stiffness(const Tet10Coords& x, const model::Material& m, const TetQuadrature& rule) {
+  // The rules of E and nu (not the density's: the stiffness has none), without copying the material.
+  for (const auto& [key, value] : {std::pair<const char*, double>{"youngs_pa", m.youngs_pa}, {"poisson", m.poisson}})
+    if (const char* broken = model::material_rule(key, value))
+      throw std::invalid_argument(std::string("tet10_stiffness: ") + key + " = " + std::to_string(value) + ": " + broken);
   // Voigt order (xx, yy, zz, yz, xz, xy) with engineering shears, so strain energy = e^T D e / 2.
   Eigen::Matrix<double, 6, 6> d = Eigen::Matrix<double, 6, 6>::Zero();
-  d.topLeftCorner<3, 3>().setConstant(m.lame_lambda_pa);
-  for (int i = 0; i < 3; ++i) d(i, i) += 2 * m.shear_modulus_pa;
-  for (int i = 3; i < 6; ++i) d(i, i) = m.shear_modulus_pa;
+  d.topLeftCorner<3, 3>().setConstant(m.lame_lambda_pa());
+  for (int i = 0; i < 3; ++i) d(i, i) += 2 * m.shear_modulus_pa();
+  for (int i = 3; i < 6; ++i) d(i, i) = m.shear_modulus_pa();
   Tet10Matrix k = Tet10Matrix::Zero();
   Eigen::Matrix<double, 6, kTet10Dofs> b;
   for (std::size_t q = 0; q < rule.points.size(); ++q) {

@@ -14,6 +14,8 @@
 
 #include "kernels/fem/tet_quadrature.hpp"
 
+#include "model/material.hpp"
+
 namespace clatter::kernels::fem {
 
 inline constexpr int kTet10Nodes = 10;
@@ -35,11 +37,6 @@ Tet10Coords tet10_straight(const Eigen::Matrix<double, 3, 4>& vertices_m);
 // J = dx / d(xi, eta, zeta) at p (J(i, k) = dx_i / dxi_k).
 Eigen::Matrix3d tet10_jacobian(const Tet10Coords& x_m, const RefPoint& p);
 
-struct IsotropicMaterial {
-  double lame_lambda_pa = 0, shear_modulus_pa = 0;  // Lamé lambda and mu
-  static IsotropicMaterial from_youngs(double youngs_modulus_pa, double poisson_ratio);
-};
-
 // An element whose Jacobian determinant is not positive at some quadrature point (inverted or
 // degenerate): integrating it would give a matrix with the wrong sign of energy.
 class InvertedElement : public std::domain_error {
@@ -52,7 +49,9 @@ class InvertedElement : public std::domain_error {
 // Volume (m^3), stiffness K_e (N/m) and consistent mass M_e (kg) by the given rule; each throws
 // InvertedElement rather than integrate a non-positive Jacobian.
 double tet10_volume_m3(const Tet10Coords& x_m, const TetQuadrature& rule = keast_degree5());
-Tet10Matrix tet10_stiffness(const Tet10Coords& x_m, const IsotropicMaterial& material,
+// The stiffness takes E and nu of `material` (its Lamé constants); std::invalid_argument when
+// they are not an elastic solid's (model::check_material, density aside).
+Tet10Matrix tet10_stiffness(const Tet10Coords& x_m, const model::Material& material,
                             const TetQuadrature& rule = keast_degree5());
 Tet10Matrix tet10_mass(const Tet10Coords& x_m, double rho_kg_m3, const TetQuadrature& rule = keast_degree5());
 

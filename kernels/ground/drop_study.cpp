@@ -42,7 +42,8 @@ double ball_pressure(const BallDrop& d, double t) {
   return d.rho0_kg_m3 * a3 * std::sin(d.elevation_rad) * (accel / (d.distance_m * d.distance_m) + jerk / (d.c0_m_s * d.distance_m));
 }
 
-DropSound drop_sound(const BallDrop& d, const HalfSpace& ground, double ds_per_eta, const VolumeSettings& settings) {
+DropSound drop_sound(const BallDrop& d, const model::Material& ground, double ds_per_eta, const VolumeSettings& settings) {
+  check_lamb_ground(ground);
   check(d);
   DropSound out;
   // The ball: midpoint rule over the contact (its pressure is a smooth pulse of duration tc).
@@ -55,7 +56,7 @@ DropSound drop_sound(const BallDrop& d, const HalfSpace& ground, double ds_per_e
   }
   // The ground, in the bank's dimensionless form (model/ground_bank.hpp).
   const double cs = ground.shear_speed_m_s(), mach = cs / d.c0_m_s;
-  const LambSurface surface(ground.poisson_ratio);
+  const LambSurface surface(ground.poisson);
   out.eta = cs * d.contact_time_s / 4 / d.distance_m;
   // phi continues linearly past s_end (pressure_antiderivative): the window may reach 20 eta past it.
   const double eta = out.eta, s_end = std::max(mach, surface.rayleigh_tau()) + 1.5;

@@ -34,7 +34,7 @@ struct DropSound {
 
 // The ground's and the ball's sound for one drop on one ground. `ds_per_eta` samples phi at
 // eta / ds_per_eta.
-DropSound drop_sound(const BallDrop& drop, const HalfSpace& ground, double ds_per_eta = 8, const VolumeSettings& settings = {});
+DropSound drop_sound(const BallDrop& drop, const model::Material& ground, double ds_per_eta = 8, const VolumeSettings& settings = {});
 
 // The ball's pressure at the listener, t after the first contact (exposed for tests).
 double ball_pressure(const BallDrop& drop, double t_s);

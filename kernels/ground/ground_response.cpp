@@ -284,10 +284,10 @@ PressureSeries pressure_antiderivative(const VolumeSeries& v, double eta, double
   return out;
 }
 
-double pressure_scale(const HalfSpace& ground, double rho0_kg_m3, double impulse_n_s, double distance_m) {
+double pressure_scale(const model::Material& ground, double rho0_kg_m3, double impulse_n_s, double distance_m) {
   if (!(distance_m > 0)) throw std::invalid_argument("pressure_scale: the listener's distance must be positive");
   const double cs = ground.shear_speed_m_s();
-  return rho0_kg_m3 * impulse_n_s * cs * cs * cs / (ground.shear_modulus_pa * distance_m * distance_m * distance_m);
+  return rho0_kg_m3 * impulse_n_s * cs * cs * cs / (ground.shear_modulus_pa() * distance_m * distance_m * distance_m);
 }
 
 }  // namespace clatter::kernels::ground

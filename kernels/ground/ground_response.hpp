@@ -57,6 +57,6 @@ PressureSeries pressure_antiderivative(const VolumeSeries& volume, double eta, d
 
 // p(t) = pressure_scale * dPi/dt_hat at t_hat = c_s t / D, for an impulse J [N s] and the air's
 // density rho0; the sign makes p a pressure (compression positive) for a load into the ground.
-double pressure_scale(const HalfSpace& ground, double rho0_kg_m3, double impulse_n_s, double distance_m);
+double pressure_scale(const model::Material& ground, double rho0_kg_m3, double impulse_n_s, double distance_m);
 
 }  // namespace clatter::kernels::ground

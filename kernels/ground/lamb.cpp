@@ -56,19 +56,10 @@ double unwrap(const R& r, double sa, cplx ra, double sb, cplx rb, int depth) {
 
 }  // namespace
 
-double HalfSpace::shear_speed_m_s() const { return std::sqrt(shear_modulus_pa / density_kg_m3); }
-double HalfSpace::pressure_speed_m_s() const {
-  return shear_speed_m_s() * std::sqrt(2 * (1 - poisson_ratio) / (1 - 2 * poisson_ratio));
-}
-double HalfSpace::youngs_modulus_pa() const { return 2 * (1 + poisson_ratio) * shear_modulus_pa; }
-
-HalfSpace half_space(double youngs_modulus_pa, double nu, double density_kg_m3) {
-  if (!(youngs_modulus_pa > 0) || !std::isfinite(youngs_modulus_pa))
-    throw std::invalid_argument("ground: Young's modulus must be positive and finite, not " + num(youngs_modulus_pa) + " Pa");
-  check_nu(nu, "ground");
-  if (!(density_kg_m3 > 0) || !std::isfinite(density_kg_m3))
-    throw std::invalid_argument("ground: the density must be positive and finite, not " + num(density_kg_m3) + " kg/m^3");
-  return {youngs_modulus_pa / (2 * (1 + nu)), nu, density_kg_m3};
+void check_lamb_ground(const model::Material& ground) {
+  const std::string bad = model::check_material(ground);
+  if (!bad.empty()) throw std::invalid_argument("ground '" + ground.name + "': " + bad);
+  check_nu(ground.poisson, "ground");
 }
 
 double pekeris_step(double tau) {
@@ -193,20 +184,20 @@ double LambSurface::smoothed(double tau, double eta, int k) const {
   return -(total.imag()) / (2 * kPi * kPi);
 }
 
-RegularizedLamb::RegularizedLamb(const HalfSpace& ground, double epsilon_m)
-    : ground_(ground), epsilon_m_(epsilon_m), c_s_(ground.shear_speed_m_s()), surface_(ground.poisson_ratio) {
+RegularizedLamb::RegularizedLamb(const model::Material& ground, double epsilon_m)
+    : ground_((check_lamb_ground(ground), ground)), epsilon_m_(epsilon_m), c_s_(ground.shear_speed_m_s()), surface_(ground.poisson) {
   if (!(epsilon_m > 0) || !std::isfinite(epsilon_m))
     throw std::invalid_argument("RegularizedLamb: the regularization length must be positive, not " + num(epsilon_m) + " m");
 }
 
 double RegularizedLamb::acceleration(double r, double t) const {
   const double tau = c_s_ * t / r, eta = epsilon_m_ / r;
-  return -std::pow(c_s_, 3) / (ground_.shear_modulus_pa * std::pow(r, 4)) * surface_.regularized(tau, eta, 3);
+  return -std::pow(c_s_, 3) / (ground_.shear_modulus_pa() * std::pow(r, 4)) * surface_.regularized(tau, eta, 3);
 }
 
 double RegularizedLamb::displacement(double r, double t) const {
   const double tau = c_s_ * t / r, eta = epsilon_m_ / r;
-  return c_s_ / (ground_.shear_modulus_pa * r * r) * surface_.regularized(tau, eta, 1);
+  return c_s_ / (ground_.shear_modulus_pa() * r * r) * surface_.regularized(tau, eta, 1);
 }
 
 }  // namespace clatter::kernels::ground

@@ -27,18 +27,14 @@
 #include <complex>
 #include <numbers>
 
+#include "model/material.hpp"
+
 namespace clatter::kernels::ground {
 
-// An isotropic elastic half-space. Construct with half_space(), which checks the moduli.
-struct HalfSpace {
-  double shear_modulus_pa = 0, poisson_ratio = 0, density_kg_m3 = 0;
-  double shear_speed_m_s() const;
-  double pressure_speed_m_s() const;
-  double youngs_modulus_pa() const;
-};
-
-// std::invalid_argument naming the value for E <= 0, nu outside (0, 0.5), rho <= 0 (or non-finite).
-HalfSpace half_space(double youngs_modulus_pa, double poisson_ratio, double density_kg_m3);
+// The half-space is a model::Material (its moduli and density); Lamb's closed form below also needs
+// 0 < nu (the sum over the Rayleigh roots assumes it). std::invalid_argument naming the value when
+// the material is not one (model::check_material) or nu <= 0.
+void check_lamb_ground(const model::Material& ground);
 
 // Pekeris's closed form (nu = 1/4): S(tau) with its explicit constants.
 double pekeris_step(double tau);
@@ -78,15 +74,15 @@ class LambSurface {
 //   a_n(r, t) = -(c_s^3 / (mu r^4)) d^3/dtau^3 (f_eta * S)(tau),   tau = c_s t / r, eta = eps / r.
 class RegularizedLamb {
  public:
-  RegularizedLamb(const HalfSpace& ground, double epsilon_m);
+  RegularizedLamb(const model::Material& ground, double epsilon_m);  // check_lamb_ground
   double acceleration(double r_m, double t_s) const;
   // The displacement into the ground per unit impulse, (1/(mu r)) (c_s/r) d/dtau (f_eta * S).
   double displacement(double r_m, double t_s) const;
-  const HalfSpace& ground() const { return ground_; }
+  const model::Material& ground() const { return ground_; }
   double epsilon_m() const { return epsilon_m_; }
 
  private:
-  HalfSpace ground_;
+  model::Material ground_;
   double epsilon_m_, c_s_;
   LambSurface surface_;
 };

@@ -1,4 +1,4 @@
-// One modal-bank entry through the job's own pipeline (jobs/modal_job.hpp: pre-solve, mesh rule,
+// One modal-bank entry through the job's own pipeline (banks/modal/modal_job.hpp: pre-solve, mesh rule,
 // parallel assembly, spectrum slicing, basis rule), against independent facts (docs/validation.md
 // "The modal bank"):
 //  - completeness: on a sphere and a 1:2:4 ellipsoid every eigenvalue the inertia counts in the

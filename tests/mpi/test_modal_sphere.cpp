@@ -44,7 +44,7 @@ int rank_of(MPI_Comm comm) {
   return r;
 }
 
-// The job's assembly (jobs/modal_fem.hpp): rows split by whole nodes, each rank the element blocks
+// The job's assembly (banks/modal/modal_fem.hpp): rows split by whole nodes, each rank the element blocks
 // of a contiguous share of elements.
 jobs::FemModel assemble(MPI_Comm comm, const Tet10Mesh& mesh) {
   model::Material glass;

@@ -1,4 +1,4 @@
-// The acoustic transfer of real modes of elongated and flat ellipsoids (jobs/modal_transfer.hpp,
+// The acoustic transfer of real modes of elongated and flat ellipsoids (banks/modal/modal_transfer.hpp,
 // docs/transfer.md), against independent facts:
 //  - the far field of the stored multipole expansion agrees with a direct Kirchhoff-Helmholtz
 //    surface integral of the exterior solution's surface pressure and the *prescribed* Neumann data

@@ -242,7 +242,7 @@ TEST(SimScene, WrittenSceneReadsBackExactly) {
   EXPECT_EQ(back.ground_material, scene.ground_material);
   EXPECT_EQ(back.listeners_m, scene.listeners_m);
   EXPECT_EQ(back.duration_s, scene.duration_s);
-  EXPECT_EQ(back.materials.at(scene.ground_material).density_kg_m3, scene.materials.at(scene.ground_material).density_kg_m3);
+  EXPECT_EQ(back.materials.at(scene.ground_material).rho_kg_m3, scene.materials.at(scene.ground_material).rho_kg_m3);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "synth/ground_source.hpp"
 #include "synth/render_scene.hpp"
+#include "tests/unit/make_material.hpp"
 
 using namespace clatter;
 
@@ -55,8 +56,8 @@ model::GroundBank uniform_bank(double t0 = 8, double w = 10) {
 io::Scene ground_scene(const std::string& ground, std::vector<Vec3> listeners) {
   io::Scene s;
   s.path = "ground-scene.json";
-  s.materials["concrete"] = {3e10, 0.2};
-  s.materials["soil"] = {1e8, 0.3};
+  s.materials["concrete"] = test::elastic(3e10, 0.2);
+  s.materials["soil"] = test::elastic(1e8, 0.3);
   s.ground_material = ground;
   s.listeners_m = std::move(listeners);
   return s;
@@ -96,7 +97,8 @@ double peak(const std::vector<double>& x) {
 
 double amplitude(const synth::GroundSource& g, double j_n_s, double d_m) {
   const synth::GroundMedium& m = g.medium();
-  return m.air_density_kg_m3 * std::pow(m.shear_speed_m_s, 3) * j_n_s / (m.ground.shear_modulus_pa * std::pow(d_m, 3));
+  const double mu_pa = m.material->youngs_pa / (2 * (1 + m.material->poisson));  // from the definition
+  return m.air_density_kg_m3 * std::pow(m.shear_speed_m_s, 3) * j_n_s / (mu_pa * std::pow(d_m, 3));
 }
 
 }  // namespace
@@ -298,15 +300,15 @@ TEST(GroundSynth, BadGroundsAndListenersAreInputErrorsNamingTheKeyAndValues) {
   scene = ground_scene("concrete", {at(3, 0.6), {1, 2, 0}});
   const std::string below = message(scene);
   scene = ground_scene("concrete", {at(3, 0.6)});
-  scene.materials["concrete"].youngs_modulus_pa = 3.1e10;
+  scene.materials["concrete"].youngs_pa = 3.1e10;
   const std::string modulus = message(scene);
-  scene.materials["concrete"].youngs_modulus_pa = 3.02e10;  // within 1 %
-  scene.materials["concrete"].poisson_ratio = 0.25;
+  scene.materials["concrete"].youngs_pa = 3.02e10;  // within 1 %
+  scene.materials["concrete"].poisson = 0.25;
   const std::string poisson = message(scene);
-  scene.materials["concrete"].poisson_ratio = 0.2;
-  scene.materials["concrete"].density_kg_m3 = 2000;
+  scene.materials["concrete"].poisson = 0.2;
+  scene.materials["concrete"].rho_kg_m3 = 2000;
   const std::string density = message(scene);
-  scene.materials["concrete"].density_kg_m3 = 2410;
+  scene.materials["concrete"].rho_kg_m3 = 2410;
   const std::string fine = message(scene);
   for (const auto& m : {missing, below, modulus, poisson, density}) std::printf("ground: error: %s\n", m.c_str());
   EXPECT_EQ(missing, "ground-scene.json: ground_material: 'Concrete' is not a material of the ground bank ground.h5, which "

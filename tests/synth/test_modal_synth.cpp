@@ -15,6 +15,7 @@
 #include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
 #include "tests/synth/bank_paths.hpp"
+#include "tests/unit/make_material.hpp"
 
 using namespace clatter;
 
@@ -61,7 +62,7 @@ model::ModalBank synthetic_bank(const std::vector<SyntheticMode>& modes) {
 io::Scene one_object_scene(double base_frequency_hz, double size = 1) {
   io::Scene s;
   s.path = "modal-scene";
-  s.materials["glass"] = {6.2e10, 0.2, true, 60.0, 2e-6};
+  s.materials["glass"] = clatter::test::damped(6.2e10, 0.2, 60.0, 2e-6);
   s.ground_material = "glass";
   io::SceneObject o;
   o.id = 1;

@@ -16,6 +16,7 @@
 #include "tests/reference/compare.hpp"
 #include "tests/reference/sphere_exact.hpp"
 #include "tests/synth/bank_paths.hpp"
+#include "tests/unit/make_material.hpp"
 
 using namespace clatter;
 using reference::HalfSine;
@@ -32,7 +33,7 @@ io::Scene one_sphere_scene(const std::string& path, double radius_m) {
   const double moment = 0.4 * mass * radius_m * radius_m;
   io::Scene scene;
   scene.path = path;
-  scene.materials["rock"] = {5e10, 0.25};
+  scene.materials["rock"] = clatter::test::elastic(5e10, 0.25);
   scene.ground_material = "rock";
   io::SceneObject sphere;
   sphere.id = 1;
@@ -80,7 +81,8 @@ TEST(Synth, SingleImpulseOnASphereMatchesTheExactTranslatingSphere) {
   synth::RenderOptions options;
   const auto out = synth::render_scene(scene, {&pan}, options);
   // The reference: Hertz with m* = m, R* = radius, the same materials.
-  const double tau = kernels::hertz_contact_time_s(mass, radius, {5e10, 0.25}, {5e10, 0.25}, e.normal_speed_m_s);
+  const model::Material rock = clatter::test::elastic(5e10, 0.25);
+  const double tau = kernels::hertz_contact_time_s(mass, radius, rock, rock, e.normal_speed_m_s);
   const HalfSine hs{kernels::half_sine_peak(j, tau) / mass, e.t_s, tau};
   const double cos_theta = 0.6 * dir[0] + 0.48 * dir[1] + 0.64 * dir[2];
   const double err = relative_l2(out[0][0], [&](std::size_t n) {

@@ -10,8 +10,10 @@
 #include <stdexcept>
 
 #include "kernels/ground/drop_study.hpp"
+#include "tests/unit/make_material.hpp"
 
 using namespace clatter::kernels::ground;
+using clatter::test::ground;
 
 namespace {
 
@@ -23,7 +25,7 @@ BallDrop steel_ball(double elevation_deg) {
   return d;
 }
 
-const HalfSpace kConcrete = half_space(2.4e10, 0.2, 2400);
+const clatter::model::Material kConcrete = ground(2.4e10, 0.2, 2400);
 
 }  // namespace
 
@@ -38,7 +40,7 @@ TEST(DropStudy, GroundScalesWithBallDensityBallSoundDoesNot) {
 
 TEST(DropStudy, GroundScalesInverselyWithGroundStiffness) {
   // Twice E and twice the density: the same c_s, nu, so the same phi and eta; only mu doubles.
-  const HalfSpace stiff = half_space(4.8e10, 0.2, 4800);
+  const clatter::model::Material stiff = ground(4.8e10, 0.2, 4800);
   const BallDrop d = steel_ball(30);
   const DropSound a = drop_sound(d, kConcrete, 4), b = drop_sound(d, stiff, 4);
   EXPECT_NEAR(a.ground_peak_pa / b.ground_peak_pa, 2.0, 1e-9);
@@ -68,5 +70,5 @@ TEST(DropStudy, BadInput) {
   d = steel_ball(90);
   d.contact_time_s = 0;
   EXPECT_THROW(drop_sound(d, kConcrete), std::invalid_argument);
-  EXPECT_THROW(half_space(0, 0.2, 2400), std::invalid_argument);
+  EXPECT_THROW(drop_sound(steel_ball(90), ground(0, 0.2, 2400)), std::invalid_argument);
 }

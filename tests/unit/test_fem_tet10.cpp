@@ -14,7 +14,12 @@ using namespace clatter::kernels::fem;
 
 namespace {
 
-const IsotropicMaterial kSteel = IsotropicMaterial::from_youngs(200e9, 0.3);
+clatter::model::Material steel_material() {
+  clatter::model::Material m;
+  m.name = "steel", m.youngs_pa = 200e9, m.poisson = 0.3, m.rho_kg_m3 = 7850;
+  return m;
+}
+const clatter::model::Material kSteel = steel_material();
 constexpr double kRhoKgM3 = 7800;
 
 double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
@@ -202,8 +207,11 @@ Tet10Mesh box_mesh(const Eigen::Vector3d& l) {
 }
 
 // Strain energy density (J/m^3) of the symmetric strain e.
-double energy_density(const Eigen::Matrix3d& e, const IsotropicMaterial& m) {
-  return 0.5 * m.lame_lambda_pa * e.trace() * e.trace() + m.shear_modulus_pa * (e.array() * e.array()).sum();
+// Lamé constants from their definitions, not from the material's accessors.
+double energy_density(const Eigen::Matrix3d& e, const clatter::model::Material& m) {
+  const double mu_pa = m.youngs_pa / (2 * (1 + m.poisson));
+  const double lambda_pa = m.youngs_pa * m.poisson / ((1 + m.poisson) * (1 - 2 * m.poisson));
+  return 0.5 * lambda_pa * e.trace() * e.trace() + mu_pa * (e.array() * e.array()).sum();
 }
 
 // A displacement u_i(x) = g(i, :) x + x^T h[i] x / 2 (linear when every h[i] is zero), metres.
@@ -236,7 +244,7 @@ Field make_field(bool quadratic) {
 
 // The exact strain energy of f over the box: the density is a quadratic, so 3-point Gauss-Legendre
 // per axis is exact.
-double exact_energy(const Field& f, const Eigen::Vector3d& l, const IsotropicMaterial& m) {
+double exact_energy(const Field& f, const Eigen::Vector3d& l, const clatter::model::Material& m) {
   std::vector<double> x, w;
   gauss_legendre_unit(3, x, w);
   double e = 0;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "kernels/fem/tet_quadrature.hpp"
+#include "tests/unit/make_material.hpp"
 #include "kernels/ground/ground_response.hpp"
 
 using namespace clatter::kernels::ground;
@@ -80,7 +81,7 @@ Route bank_route(double nu, double mach, double elevation, double eta, double t_
 void compare_routes(double nu, double mach, double elevation_deg, double eta, int r_panels, int psi_panels, double tolerance,
                     int stride = 1) {
   const double el = elevation_deg * kPi / 180;
-  const RegularizedLamb field(HalfSpace{1.0, nu, 1.0}, eta);
+  const RegularizedLamb field(clatter::test::unit_ground(nu), eta);
   const LambSurface g(nu);
   const double t0 = first_arrival(g, mach, el);
   const Route bank = bank_route(nu, mach, el, eta, t0 + 1);
@@ -200,5 +201,5 @@ TEST(GroundResponse, BadInput) {
   const VolumeSeries v = step_volume_series(g, 2, 1, 3, 0.1);
   EXPECT_THROW(pressure_antiderivative(v, 0, 0, 0.1, 1), std::invalid_argument);
   EXPECT_THROW(pressure_antiderivative(v, 0.1, 0, 0, 1), std::invalid_argument);
-  EXPECT_THROW(pressure_scale(HalfSpace{1, 0.25, 1}, 1.2, 1, 0), std::invalid_argument);
+  EXPECT_THROW(pressure_scale(clatter::test::unit_ground(0.25), 1.2, 1, 0), std::invalid_argument);
 }

@@ -259,7 +259,8 @@ TEST(Contact, HertzTimeFollowsItsScalingLaws) {
   // = 1.3988e-25, whose fifth root is 1.0695e-5, so tau = 3.067e-5 s: tens of microseconds, as
   // measured for steel balls of this size.
   using clatter::kernels::hertz_contact_time_s;
-  const clatter::kernels::ElasticMaterial steel{200e9, 0.3};
+  clatter::model::Material steel;
+  steel.youngs_pa = 200e9, steel.poisson = 0.3;
   const double t = hertz_contact_time_s(4.11e-3, 0.01, steel, steel, 1.0);
   EXPECT_NEAR(t, 2.868 * std::pow(4.11e-3 * 4.11e-3 / (0.01 * 1.0989e11 * 1.0989e11), 0.2), 1e-3 * t);
   EXPECT_NEAR(t, 3.067e-5, 0.002e-5);

@@ -28,7 +28,7 @@ struct SurfaceMesh {
 
 const SurfaceMesh& sphere_mesh() {
   static const SurfaceMesh mesh = [] {
-    // h of the default glass bank's sphere entry: c_s / (4 f_1) / 3 (jobs/modal_job.cpp).
+    // h of the default glass bank's sphere entry: c_s / (4 f_1) / 3 (banks/modal/modal_job.cpp).
     const auto m = fem::mesh_ellipsoid({{kA, kA, kA}, 0.164});
     SurfaceMesh s;
     for (Eigen::Index i = 0; i < m.mesh.nodes_m.cols(); ++i)
