@@ -43,8 +43,9 @@ struct Material {
   // c_s = sqrt(G / rho). At fixed nu every modal frequency of a given shape is proportional to it,
   // which is why one modal bank serves every material of its nu class.
   double shear_speed_m_s() const { return std::sqrt(shear_modulus_pa() / rho_kg_m3); }
-  // c_p = sqrt(E (1 - nu) / (rho (1 + nu)(1 - 2 nu))) = sqrt((lambda + 2 mu) / rho).
-  double pressure_speed_m_s() const { return std::sqrt((lame_lambda_pa() + 2 * shear_modulus_pa()) / rho_kg_m3); }
+  // c_p = sqrt((lambda + 2 mu) / rho) = c_s sqrt(2 (1 - nu) / (1 - 2 nu)), computed in the second
+  // form, as the ground banks always have (their stored c_p keeps its last bit).
+  double pressure_speed_m_s() const { return shear_speed_m_s() * std::sqrt(2 * (1 - poisson) / (1 - 2 * poisson)); }
   // c_R: the real root in (0, c_s) of Rayleigh's equation (2 - x)^2 = 4 sqrt(1 - x) sqrt(1 - a x),
   // x = (c_R / c_s)^2, a = (c_s / c_p)^2, by bisection (the root is unique there for -1 < nu < 1/2;
   // 60 halvings reach double precision, cheap for a derived value).

@@ -126,10 +126,14 @@ ModalSpec make_modal_spec(const io::Config& config) {
 
 std::string modal_sweep_toml(const io::Config& config, const ModalSpec& spec) {
   const auto& m = spec.header.material;
+  // The built-in table named as banks before the one materials table named it: the text is hashed
+  // into the sweep id, and a bank at OUT of another sweep id is only replaced with --force.
+  const std::string table = config.string("material.table").empty() ? "built-in configs/materials.toml"
+                                                                     : spec.material_table;
   return config.to_toml() +
          fmt::format("\n# material '{}' as read from {}:\n# rho_kg_m3 = {:.17g}, youngs_pa = {:.17g}, poisson = {:.17g}, "
                      "rayleigh_alpha_1_s = {:.17g}, rayleigh_beta_s = {:.17g}\n",
-                     m.name, spec.material_table, m.rho_kg_m3, m.youngs_pa, m.poisson, m.damping.value().alpha_1_s,
+                     m.name, table, m.rho_kg_m3, m.youngs_pa, m.poisson, m.damping.value().alpha_1_s,
                      m.damping.value().beta_s);
 }
 
