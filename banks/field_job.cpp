@@ -103,19 +103,14 @@ void run_field(MPI_Comm comm, const io::Config& config, const std::string& out_p
 }
 
 Command add_field_command(CLI::App& parent) {
-  auto* app = parent.add_subcommand("field", "sample the exact pressure of a psi-driven monopole on a distributed grid "
-                                             "and write it with collective HDF5 (the foundation demo)");
-  auto options = std::make_shared<ConfigOptions>();
-  auto out = std::make_shared<std::string>("field.h5");
-  add_config_options(*app, *options);
-  add_out_option(*app, *out, "output HDF5 file");
-  return {app, [options, out](const RunContext& context) -> int {
-            const auto config = job_config(context.world, field_schema(), *options);
-            if (!config) return kExitOk;
-            Stage stage("field");
-            run_field(context.world, *config, *out, context.command_line);
-            return kExitOk;
-          }};
+  return add_config_command(parent, "field",
+                            "sample the exact pressure of a psi-driven monopole on a distributed grid and write it "
+                            "with collective HDF5 (the foundation demo)",
+                            field_schema(), "field.h5", "output HDF5 file",
+                            [](const RunContext& context, const io::Config& config, const std::string& out) {
+                              Stage stage("field");
+                              run_field(context.world, config, out, context.command_line);
+                            });
 }
 
 }  // namespace clatter::jobs

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/errors.hpp"
 #include "io/text_file.hpp"
 #include "mpi/comm.hpp"
 
@@ -58,6 +59,21 @@ std::optional<io::Config> job_config(MPI_Comm comm, const io::Schema& schema, co
   if (!options.print_config) return config;
   if (mpi::rank(comm) == 0) std::fputs(config.to_toml().c_str(), stdout);
   return std::nullopt;
+}
+
+Command add_config_command(CLI::App& parent, const std::string& name, const std::string& help,
+                           const io::Schema& schema, const std::string& default_out, const std::string& out_help,
+                           ConfigRun run) {
+  auto* app = parent.add_subcommand(name, help);
+  auto options = std::make_shared<ConfigOptions>();
+  auto out = std::make_shared<std::string>(default_out);
+  add_config_options(*app, *options);
+  add_out_option(*app, *out, out_help);
+  return {app, [&schema, options, out, run = std::move(run)](const RunContext& context) -> int {
+            const auto config = job_config(context.world, schema, *options);
+            if (config) run(context, *config, *out);
+            return kExitOk;
+          }};
 }
 
 std::string clock_text(double seconds) {

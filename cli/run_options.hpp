@@ -4,10 +4,13 @@
 #include <CLI/CLI.hpp>
 #include <mpi.h>
 
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "cli/command.hpp"
 #include "io/config.hpp"
 
 namespace clatter::jobs {
@@ -46,6 +49,13 @@ io::Config load_config(MPI_Comm comm, const io::Schema& schema, const ConfigOpti
 // The same, or nullopt when --print-config asked only to print it (rank 0 prints).
 std::optional<io::Config> job_config(MPI_Comm comm, const io::Schema& schema, const ConfigOptions& options,
                                      const BuiltinConfig* builtin = nullptr);
+
+// A subcommand that runs one config of `schema` into one output file (-c, --set, --print-config,
+// -o): `run` gets the loaded config and the output path on every rank, unless --print-config.
+using ConfigRun = std::function<void(const RunContext&, const io::Config& config, const std::string& out)>;
+Command add_config_command(CLI::App& parent, const std::string& name, const std::string& help,
+                           const io::Schema& schema, const std::string& default_out, const std::string& out_help,
+                           ConfigRun run);
 
 // The command line as one string, for provenance.
 std::string command_line(int argc, char** argv);

@@ -54,7 +54,15 @@ clatter_error_test(bad_plan_kind 0 "--kind: no bank kind 'lamb' (known: pan, mod
 set(probe_args probe ${good_bank} --proxy 0.35,0.2 --field 1)
 clatter_error_test(bad_probe_rate 0 "--rate -5;must be >= 0 Hz" ${probe_args} --point 1,0.5,0.5 --rate -5)
 clatter_error_test(bad_probe_point_nan 0 "--point 1,nan,0.5;coordinates must be finite" ${probe_args} --point 1,nan,0.5)
-set_tests_properties(bad_probe_rate bad_probe_point_nan PROPERTIES FIXTURES_REQUIRED pan_bank)
+# info and probe find a bank's kind by its format attribute (banks/registry.cpp), and refuse the
+# options another kind declared
+clatter_error_test(bad_probe_entry_on_pan 0 "--entry: only for a modal bank;bank.h5 is not one" ${probe_args} --point 1,0.5,0.5 --entry 0)
+clatter_error_test(bad_info_entry_on_pan 0 "--entry: only for a modal bank;bank.h5 is not one" info ${good_bank} --entry 0)
+clatter_error_test(bad_probe_pan_without_proxy 0 "a PAN bank needs --proxy B,C and --field N" probe ${good_bank} --point 1,0.5,0.5)
+set_tests_properties(bad_probe_rate bad_probe_point_nan bad_probe_entry_on_pan bad_info_entry_on_pan bad_probe_pan_without_proxy
+                     PROPERTIES FIXTURES_REQUIRED pan_bank)
+clatter_error_test(bad_plan_ground 0 "plan: no cost model for a ground bank yet" plan -c ${PROJECT_SOURCE_DIR}/configs/ground-demo.toml)
+clatter_error_test(bad_plan_empty_config 0 "plan: several of the bank kinds' schemas accept this config;--kind" plan -c ${bad}/empty.toml)
 clatter_synth_error_test(bad_synth_option "not expected: --frobnicate;clatter-synth --help" -i ${bad_in}/good.json -b ${good_bank} --frobnicate)
 clatter_synth_error_test(bad_synth_missing_bank "give a PAN bank (-b), a modal bank (-m) or a ground bank (-g), or several" -i ${bad_in}/good.json)
 clatter_synth_error_test(bad_synth_rate "--rate 100;must be in [8000, 384000] Hz" -i ${bad_in}/good.json -b ${good_bank} --rate 100)
@@ -158,7 +166,12 @@ foreach(case
 endforeach()
 clatter_error_test(bad_bank_info_corrupt 0 "corrupt.h5;cannot be read: corrupt or truncated file" info ${bad_banks}/corrupt.h5)
 clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads version 2" info ${bad_banks}/wrong_version.h5)
-set_tests_properties(bad_bank_info_corrupt bad_bank_info_version PROPERTIES FIXTURES_REQUIRED bad_banks)
+clatter_error_test(bad_bank_info_wrong_format 0 "wrong_format.h5: format 'clatter-fdtd-raw' is not a bank's;clatter-pan-bank, clatter-modal-bank, clatter-ground-bank"
+                   info ${bad_banks}/wrong_format.h5)
+clatter_error_test(bad_bank_info_no_format 0 "no_format.h5: not a Clatter file (no 'format' attribute);expected a bank"
+                   info ${bad_banks}/no_format.h5)
+set_tests_properties(bad_bank_info_corrupt bad_bank_info_version bad_bank_info_wrong_format bad_bank_info_no_format
+                     PROPERTIES FIXTURES_REQUIRED bad_banks)
 
 # sweep results folders (cli/make_bad_results.sh)
 set(bad_results ${CMAKE_CURRENT_BINARY_DIR}/bad_results)

@@ -203,26 +203,21 @@ void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult
 }
 
 Command add_solve_command(CLI::App& parent) {
-  auto* app = parent.add_subcommand("solve", "FDTD solves around one rigid ellipsoid for the chosen rigid-body fields, "
-                                             "recorded at listener points");
-  auto options = std::make_shared<ConfigOptions>();
-  auto out = std::make_shared<std::string>("raw.h5");
-  add_config_options(*app, *options);
-  add_out_option(*app, *out, "output HDF5 file of raw time series");
-  return {app, [options, out](const RunContext& context) -> int {
-            const auto config = job_config(context.world, solve_schema(), *options);
-            if (!config) return kExitOk;
-            Stage stage("solve");
-            SolveSpec spec;
-            mpi::agree(context.world, [&] { spec = make_solve_spec(*config); });
-            const auto result = run_solve(context.world, spec, context.progress_interval_s);
-            if (context.is_root) {
-              Stage write("write");
-              write_raw(*out, spec, result, *config, context.command_line, context.n_ranks);
-              spdlog::info("solve: wrote {}", *out);
-            }
-            return kExitOk;
-          }};
+  return add_config_command(
+      parent, "solve", "FDTD solves around one rigid ellipsoid for the chosen rigid-body fields, recorded at listener "
+                       "points",
+      solve_schema(), "raw.h5", "output HDF5 file of raw time series",
+      [](const RunContext& context, const io::Config& config, const std::string& out) {
+        Stage stage("solve");
+        SolveSpec spec;
+        mpi::agree(context.world, [&] { spec = make_solve_spec(config); });
+        const auto result = run_solve(context.world, spec, context.progress_interval_s);
+        if (context.is_root) {
+          Stage write("write");
+          write_raw(out, spec, result, config, context.command_line, context.n_ranks);
+          spdlog::info("solve: wrote {}", out);
+        }
+      });
 }
 
 }  // namespace clatter::jobs
