@@ -118,43 +118,36 @@ std::vector<T> all_gather(MPI_Comm comm, const T& value) {
   return out;
 }
 
+namespace detail {
+template <Arithmetic T>
+T reduce(MPI_Comm comm, T value, MPI_Op op) {
+  T out{};
+  all_reduce(comm, &value, &out, 1, mpi_type<T>(), op);
+  return out;
+}
+template <Arithmetic T, std::size_t N>
+std::array<T, N> reduce(MPI_Comm comm, const std::array<T, N>& values, MPI_Op op) {
+  std::array<T, N> out{};
+  all_reduce(comm, values.data(), out.data(), N, mpi_type<T>(), op);
+  return out;
+}
+}  // namespace detail
+
 // Reductions over every rank of `comm`, the result on every rank: of a scalar, and element-wise
 // of a std::array or a std::vector (the same length on every rank).
 template <Arithmetic T>
-T all_reduce_sum(MPI_Comm comm, T value) {
-  T out{};
-  detail::all_reduce(comm, &value, &out, 1, mpi_type<T>(), MPI_SUM);
-  return out;
-}
+T all_reduce_sum(MPI_Comm comm, T value) { return detail::reduce(comm, value, MPI_SUM); }
 template <Arithmetic T>
-T all_reduce_max(MPI_Comm comm, T value) {
-  T out{};
-  detail::all_reduce(comm, &value, &out, 1, mpi_type<T>(), MPI_MAX);
-  return out;
-}
+T all_reduce_max(MPI_Comm comm, T value) { return detail::reduce(comm, value, MPI_MAX); }
 template <Arithmetic T>
-T all_reduce_min(MPI_Comm comm, T value) {
-  T out{};
-  detail::all_reduce(comm, &value, &out, 1, mpi_type<T>(), MPI_MIN);
-  return out;
-}
+T all_reduce_min(MPI_Comm comm, T value) { return detail::reduce(comm, value, MPI_MIN); }
 template <Arithmetic T, std::size_t N>
 std::array<T, N> all_reduce_sum(MPI_Comm comm, const std::array<T, N>& values) {
-  std::array<T, N> out{};
-  detail::all_reduce(comm, values.data(), out.data(), N, mpi_type<T>(), MPI_SUM);
-  return out;
+  return detail::reduce(comm, values, MPI_SUM);
 }
 template <Arithmetic T, std::size_t N>
 std::array<T, N> all_reduce_max(MPI_Comm comm, const std::array<T, N>& values) {
-  std::array<T, N> out{};
-  detail::all_reduce(comm, values.data(), out.data(), N, mpi_type<T>(), MPI_MAX);
-  return out;
-}
-template <Arithmetic T, std::size_t N>
-std::array<T, N> all_reduce_min(MPI_Comm comm, const std::array<T, N>& values) {
-  std::array<T, N> out{};
-  detail::all_reduce(comm, values.data(), out.data(), N, mpi_type<T>(), MPI_MIN);
-  return out;
+  return detail::reduce(comm, values, MPI_MAX);
 }
 template <Arithmetic T>
 std::vector<T> all_reduce_sum(MPI_Comm comm, const std::vector<T>& values) {

@@ -11,28 +11,16 @@ configs/materials.toml) rendered with a ground bank built by clatter-bank for gr
 The bank is one material, one elevation and a coarse eta grid (seconds); the slide a 20-rock pile
 for 0.4 s (it lands at about 0.2 s).
 Usage: granite_floor_checks.py CLATTER_BANK CLATTER_SIM CLATTER_SYNTH SOURCE_DIR SCRATCH"""
-import json, math, os, shutil, subprocess, sys
+import json, math, os, sys
 import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_lib import check, failures, finish, run, start  # noqa: E402
 from synth_wav import wav  # noqa: E402
 
 bank, sim, synth, src, scratch = sys.argv[1:6]
-shutil.rmtree(scratch, ignore_errors=True)
-os.makedirs(scratch)
-os.chdir(scratch)
-failures = []
-
-
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
-
-
-def run(*args):
-    return subprocess.run(list(args), capture_output=True, text=True, stdin=subprocess.DEVNULL)
+start(scratch)
 
 
 # configs/materials.toml [granite], by hand: the values the table's source justifies.
@@ -68,7 +56,4 @@ if not failures:
         peak = float(np.abs(wav("rocks.ground.wav")).max())
         check(peak > 0 and math.isfinite(peak), f"the ground stem is not silent (peak {peak:.3g} Pa)")
 
-if failures:
-    print(f"granite floor checks: {len(failures)} failed")
-    sys.exit(1)
-print("granite floor checks: all passed")
+finish("granite floor checks")

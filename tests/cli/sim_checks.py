@@ -12,23 +12,13 @@
   output path left untouched: an unknown material, one position for two meshes, a 2-vector, a
   zero time step, nothing to simulate.
 Usage: sim_checks.py CLATTER_SIM CLATTER_SYNTH SOURCE_DIR PAN_BANK MODAL_BANK GROUND_BANK SCRATCH"""
-import filecmp, json, math, os, re, shutil, subprocess, sys
+import filecmp, json, math, os, re, sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_lib import check, finish, run, start  # noqa: E402
 
 sim, synth, src, pan_bank, modal_bank, ground_bank, scratch = sys.argv[1:8]
-shutil.rmtree(scratch, ignore_errors=True)
-os.makedirs(scratch)
-os.chdir(scratch)
-failures = []
-
-
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
-
-
-def run(*args):
-    return subprocess.run(list(args), capture_output=True, text=True)
+start(scratch)
 
 
 plate_cfg = os.path.join(src, "scenes", "plate.toml")
@@ -93,7 +83,4 @@ for extra, word in bad:
     check(r.returncode == 2 and len(lines) == 1 and word in lines[0], f"{' '.join(extra)}: exit 2 naming {word} ({r.returncode}: {r.stderr.strip()})")
     check(open("kept.json").read() == "a scene the user had\n" and not os.path.exists("kept.json.partial"), f"{word}: the existing output is untouched")
 
-if failures:
-    print(f"sim checks: {len(failures)} FAILED")
-    sys.exit(1)
-print("sim checks: all passed")
+finish("sim checks")

@@ -14,24 +14,16 @@ made by `clatter-bank ground` (the ground_bank fixture's, tests/ground.cmake) an
 The physics (scaling, delay, interpolation, box average) is checked in GroundSynth.* on banks
 with known series; here the bank is a real one.
 Usage: synth_ground_checks.py CLATTER_SYNTH GROUND_BANK PAN_BANK SCRATCH"""
-import copy, json, math, os, shutil, subprocess, sys
+import copy, json, math, os, subprocess, sys
 import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_lib import check, finish, start  # noqa: E402
 from synth_wav import wav  # noqa: E402
 
 synth, ground_bank, pan_bank, scratch = sys.argv[1:5]
-shutil.rmtree(scratch, ignore_errors=True)
-os.makedirs(scratch)
-os.chdir(scratch)
-failures = []
-
-
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
+start(scratch)
 
 
 with h5py.File(ground_bank, "r") as f:
@@ -176,5 +168,4 @@ bad = copy.deepcopy(scene)
 bad["materials"][name]["youngs_modulus_pa"] = 1.05 * ground["youngs_pa"]
 refused(bad, "modulus", [f"materials.{name}.youngs_modulus_pa", "differs from the ground bank's"], "a modulus 5 % off")
 
-print("synth ground checks: " + ("all passed" if not failures else f"{len(failures)} FAILED"))
-sys.exit(1 if failures else 0)
+finish("synth ground checks")

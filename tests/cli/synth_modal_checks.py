@@ -13,19 +13,11 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_lib import check, finish, start  # noqa: E402
 from synth_wav import wav  # noqa: E402
 
 synth, modal_bank, pan_bank, scratch = sys.argv[1:5]
-shutil.rmtree(scratch, ignore_errors=True)
-os.makedirs(scratch)
-os.chdir(scratch)
-failures = []
-
-
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
+start(scratch)
 
 
 def sphere_scene(radius, directions, duration, beta_s=1e-7):
@@ -127,5 +119,4 @@ r = subprocess.run([synth, "-i", "sphere.json", "-m", "v1.h5", "-o", "v1.wav"], 
 check(r.returncode == 2 and "v1.h5" in r.stderr and "version" in r.stderr and len(r.stderr.strip().splitlines()) == 1
       and not os.path.exists("v1.wav"), f"a version-1 modal bank: exit 2, one line, no WAV ({r.stderr.strip()})")
 
-print("synth modal checks: " + ("all passed" if not failures else f"{len(failures)} FAILED"))
-sys.exit(1 if failures else 0)
+finish("synth modal checks")
