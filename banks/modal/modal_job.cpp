@@ -93,7 +93,7 @@ FirstModeEstimate estimate_first_mode(MPI_Comm comm, const ModalSpec& spec, cons
   // A sphere of radius c rings at omega c / c_s ~ 2.5 (Lamb's n = 2); elongation lowers it.
   const double guess = std::pow(2.5 * material.shear_speed_m_s() / axes[2], 2);
   const double lambda1 = first_elastic_lambda(model, guess, spec.header.solve);
-  return {std::move(coarse), std::move(model), lambda1, std::sqrt(lambda1) / (2 * std::numbers::pi)};
+  return {std::move(coarse), std::move(model), lambda1};
 }
 
 model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::size_t index) {
@@ -103,14 +103,13 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
   const auto& settings = spec.header.solve;
   model::ModalEntry entry;
   entry.cost.ranks = mpi::size(group);
-  double lambda1_estimate = 0, f1_estimate_hz = 0;
+  double lambda1_estimate = 0;
   {  // a block: the coarse model is freed before the fine one is assembled
     const auto t0 = clock_type::now();
-    const FirstModeEstimate estimate = estimate_first_mode(group, spec, axes);
+    lambda1_estimate = estimate_first_mode(group, spec, axes).lambda1;
     entry.cost.estimate_s = since(t0);
-    lambda1_estimate = estimate.lambda1;
-    f1_estimate_hz = estimate.f1_hz;
   }
+  const double f1_estimate_hz = frequency_hz(lambda1_estimate);
   auto t0 = clock_type::now();
   const auto mesh = mesh_or_fail(spec, axes, modal_edge_length_m(spec, f1_estimate_hz));
   entry.cost.mesh_s = since(t0);

@@ -5,6 +5,8 @@
 // gathered on the surface.
 #include <mpi.h>
 
+#include <cmath>
+#include <numbers>
 #include <string>
 
 #include "banks/modal/modal_fem.hpp"
@@ -37,11 +39,14 @@ kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<d
 // `comm`, and the lowest elastic eigenvalue bracketed from the guess of a sphere of radius c
 // (omega c / c_s ~ 2.5) with the header's solve settings. The one definition that the job, `plan`
 // and `modal-samples` share, so their f_1 agree to the bit. Collective on `comm`.
+// The frequency [Hz] of an eigenvalue omega^2 [rad^2/s^2].
+inline double frequency_hz(double lambda) { return std::sqrt(lambda) / (2 * std::numbers::pi); }
+
 struct FirstModeEstimate {
   kernels::fem::EllipsoidMesh mesh;  // the coarse mesh
   FemModel model;                    // its K and M
   double lambda1 = 0;                // omega_1^2 [rad^2/s^2]
-  double f1_hz = 0;                  // sqrt(lambda1) / 2 pi
+  double f1_hz() const { return frequency_hz(lambda1); }
 };
 FirstModeEstimate estimate_first_mode(MPI_Comm comm, const ModalSpec& spec, const std::array<double, 3>& axes);
 

@@ -50,7 +50,7 @@ EntryPlan plan_entry(const ModalSpec& spec, std::size_t i) {
     const FirstModeEstimate coarse = estimate_first_mode(MPI_COMM_SELF, spec, axes);  // the job's own
     const double k = spec.header.solve.f_max_multiple;
     p.modes = petsc::eigenvalues_below(coarse.model.K, coarse.model.M, k * k * coarse.lambda1 * 1.0001) - 6;
-    p.f1_hz = coarse.f1_hz;
+    p.f1_hz = coarse.f1_hz();
     p.h_m = modal_edge_length_m(spec, p.f1_hz);
     p.dofs = mesh_entry(spec, axes, p.h_m).quality.dofs;
   } catch (const std::exception& e) {
