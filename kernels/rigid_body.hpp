@@ -24,6 +24,12 @@ struct ProxyFit {
 // a^2 = 5 (I_y + I_z - I_x) / (2 m); the three are then scaled together to the given volume.
 ProxyFit fit_proxy(const Mat3& inertia_kg_m2, double mass_kg, double volume_m3);
 
+// The surface area of the ellipsoid with semi-axes a, b, c (any order, all > 0), exactly
+// (Legendre): for a >= b >= c, phi = acos(c / a), k^2 = a^2 (b^2 - c^2) / (b^2 (a^2 - c^2)),
+//   S = 2 pi c^2 + (2 pi a b / sin phi) (E(phi, k) sin^2 phi + F(phi, k) cos^2 phi),
+// with the incomplete elliptic integrals of GSL; 4 pi a^2 for a sphere.
+double ellipsoid_surface_area_m2(double a_m, double b_m, double c_m);
+
 Vec3 to_proxy_frame(const ProxyFit& fit, const Vec3& body);  // components along the proxy axes
 
 }  // namespace clatter::kernels

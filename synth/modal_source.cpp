@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "core/rotation.hpp"
 #include "core/stage_log.hpp"
+#include "kernels/transfer/multipole.hpp"
 #include "kernels/transfer/surface_interpolation.hpp"
 #include "synth/modal_source.hpp"
 
@@ -42,6 +43,13 @@ void ModalSource::add(const Impact& im, const std::vector<Vec3>& listeners, int 
   for (std::size_t k = 0; k < v.modes.size(); ++k)
     if (g[k] != 0)
       response[k].emplace(v.omega_rad_s[k], v.damping_ratio[k], im.tau_s, im.peak_force_n * v.shape_scale * g[k]);
+  // The energy account (docs/synth.md "Energy account"): once per excitation, not per listener.
+  ObjectEnergy& account = energy_[im.model->index];
+  for (std::size_t k = 0; k < v.modes.size(); ++k)
+    if (response[k]) {
+      account.injected_j += response[k]->energy_after_contact_j();
+      account.radiated_j += 2 * v.radiated_power_w[k] * response[k]->free_square_integral();
+    }
   std::vector<double> p(v.modes.size());
   const double c_air = banks_[v.bank].header.transfer.sound_speed_m_s;
   const Vec3& x0 = im.pose.position_m;
@@ -71,7 +79,7 @@ void ModalSource::add(const Impact& im, const std::vector<Vec3>& listeners, int 
     const auto stop = std::isfinite(destroyed_s) ? static_cast<std::int64_t>(std::ceil((destroyed_s + r_m / c_air) * rate_hz))
                                                  : std::numeric_limits<std::int64_t>::max();
     for (std::size_t k = 0; k < v.modes.size(); ++k) {
-      const double weight = v.shape_scale / v.gamma * p[k];  // p_gamma(gamma x) = (s / gamma) p(x)
+      const double weight = v.transfer_bound * v.shape_scale / v.gamma * p[k];  // p_gamma(gamma x) = (s / gamma) p(x)
       if (!response[k] || !(weight > 0)) {
         ++stats_.silent_modes;
         continue;
@@ -95,6 +103,14 @@ void ModalSource::finish(std::vector<std::vector<double>>& out) {
     stats_.resonators.stepped_samples += c.stepped_samples;
   }
   for (auto& r : resonator_) std::fill(r.begin(), r.end(), std::numeric_limits<std::size_t>::max());
+  for (std::size_t i = 0; i < energy_.size(); ++i) {
+    stats_.injected_j += energy_[i].injected_j;
+    stats_.radiated_j += energy_[i].radiated_j;
+    if (energy_[i].injected_j > 0 && energy_[i].radiated_j / energy_[i].injected_j > stats_.worst_ratio) {
+      stats_.worst_ratio = energy_[i].radiated_j / energy_[i].injected_j;
+      stats_.worst_object = object_ids_[i];
+    }
+  }
 }
 
 }  // namespace clatter::synth

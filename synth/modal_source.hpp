@@ -26,6 +26,9 @@ struct ModalOptions {
   double max_frequency_hz = 20000;   // and above this (or above 0.45 of the output rate)
   double poisson_tolerance = 0.015;  // a bank serves materials within this of its nu (docs/materials.md)
   double relative_floor = 1e-6;      // a mode stops 120 dB below the loudest mode of the render
+  // The energy rule of docs/synth.md "Energy account": a scaled proxy carries at most the object's
+  // mass, and each mode decays by its radiation too. Off only to measure what the rule changes.
+  bool energy_rule = true;
 };
 
 // How one object is voiced (fixed for the whole render).
@@ -39,6 +42,13 @@ struct ModalVoice {
   std::vector<std::size_t> modes;   // entry modes rendered
   std::vector<double> omega_rad_s, damping_ratio;  // of those, scaled and in the object's material
   std::vector<const kernels::transfer::Multipole*> transfer;  // of those, the bank's (unscaled)
+  // The energy rule (docs/synth.md "Energy account"). surface_ratio: the object's surface area (of
+  // its fitted ellipsoid) over the scaled proxy's; transfer_bound: min(1, sqrt(surface_ratio)), the
+  // factor on every mode's pressure that keeps the proxy from radiating from more area than the object has.
+  double surface_ratio = 1, transfer_bound = 1;
+  std::vector<double> radiated_power_w;   // of the rendered modes: far-field power per unit q^2 (time-averaged)
+  std::vector<double> radiation_damping;  // P / omega^3, included in damping_ratio (with the rule)
+  double max_radiation_share = 0;         // max over modes of xi_rad / xi_material
   std::size_t skipped_high = 0, skipped_low = 0, skipped_overdamped = 0;
   bool band_short = false;          // the bank's last mode, scaled, is below the top frequency
 };
@@ -55,6 +65,18 @@ struct ModalStats {
   std::size_t transfer_short = 0;
   std::size_t excitations = 0, silent_modes = 0;  // mode-listener pairs excited; those with zero modal force or transfer
   kernels::modal::ResonatorCounts resonators;    // summed over listeners
+  // The energy account (docs/synth.md "Energy account"), over every excitation of the render: the
+  // rendered modes' energy when each contact ended, and what their rings radiate to the far field.
+  double injected_j = 0, radiated_j = 0;
+  double worst_ratio = 0;  // max over objects of radiated / injected
+  int worst_object = 0;    // its id
+  std::size_t bounded = 0;          // objects whose transfer the surface bound lowered
+  std::size_t radiation_damped = 0; // objects with a mode whose radiation damping is > 1 % of its material's
+};
+
+// One object's energy account over a render.
+struct ObjectEnergy {
+  double injected_j = 0, radiated_j = 0;
 };
 
 class ModalSource : public SoundSource {
@@ -79,6 +101,7 @@ class ModalSource : public SoundSource {
   // u_k(x_c) . f / |f| of every rendered mode (per unit force), x_c the Appendix F point.
   std::vector<double> modal_forces(const Impact& impact) const;
   const ModalStats& stats() const { return stats_; }
+  const std::vector<ObjectEnergy>& energy() const { return energy_; }  // per object, after finish
   const std::vector<model::ModalBank>& banks() const { return banks_; }
 
  private:
@@ -98,6 +121,8 @@ class ModalSource : public SoundSource {
   std::map<int, double> transfer_short_;
   std::vector<kernels::modal::ResonatorBank> listeners_;     // one resonator bank per listener
   std::vector<std::vector<std::size_t>> resonator_;          // [object][listener * modes + k]
+  std::vector<ObjectEnergy> energy_;  // [object]
+  std::vector<int> object_ids_;       // [object]: the scene's ids, for the summary
   ModalStats stats_;
 };
 

@@ -8,6 +8,8 @@
 
 #include "core/errors.hpp"
 #include "io/modal_bank.hpp"
+#include "kernels/rigid_body.hpp"
+#include "kernels/transfer/multipole.hpp"
 #include "synth/modal_source.hpp"
 
 namespace clatter::synth {
@@ -105,11 +107,29 @@ ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& mo
   // Bank shapes are mass-normalized for the unit proxy (mass M = rho_b V); eq. (9)'s gamma^(-3/2)
   // and a renormalization to the object's mass m give sqrt(M / m) for every gamma.
   v.shape_scale = std::sqrt(bank.header.material.rho_kg_m3 * unit_volume_m3 / o.mass_kg);
+  // The energy rule (docs/synth.md "Energy account"). The bank's shapes, renormalized to the
+  // object's mass (shape_scale), move the scaled proxy's surface at the object's own mean-square
+  // velocity; radiated power goes with that velocity times the radiating area (P = rho c sigma S
+  // <v_n^2>). Equi-frequency scaling makes the proxy of a flat or thin object far larger than it,
+  // and that area radiates what the object's cannot: the bound scales the pressure by the square
+  // root of the area ratio, never above 1, so covered objects (ratio ~1) keep their sound.
+  const kernels::ProxyFit& fit = model.proxy;
+  v.surface_ratio = kernels::ellipsoid_surface_area_m2(fit.a_m, fit.b_m, fit.c_m) /
+                    (v.gamma * v.gamma * kernels::ellipsoid_surface_area_m2(e.axes_m[0], e.axes_m[1], e.axes_m[2]));
+  if (options_.energy_rule && v.surface_ratio < 1) v.transfer_bound = std::sqrt(v.surface_ratio);
+  const auto& transfer = prepare_entry(v.bank, v.entry);
+  const double rho_air = bank.header.transfer.air_density_kg_m3, c_air = bank.header.transfer.sound_speed_m_s;
+  const double power_scale = v.shape_scale * v.transfer_bound * v.shape_scale * v.transfer_bound;
   const double top_hz = std::min(options_.max_frequency_hz, 0.45 * rate_hz);
   v.band_short = e.frequencies_hz.back() / v.gamma < top_hz;
   for (std::size_t k = 0; k < e.modes(); ++k) {
     const double f_hz = e.frequencies_hz[k] / v.gamma, omega = 2 * pi * f_hz;
-    const double xi = mat.damping_ratio(omega);
+    // The far-field power per unit q^2 does not depend on gamma (p_gamma(gamma x) = (s / gamma) p(x)
+    // over a sphere gamma times larger); the mode loses it at 2 xi_rad omega times its energy
+    // (omega^2 q^2 / 2), so xi_rad = P / omega^3.
+    const double power_w = power_scale * kernels::transfer::far_field_power_w(transfer[k], rho_air, c_air);
+    const double xi_material = mat.damping_ratio(omega), xi_radiation = power_w / (omega * omega * omega);
+    const double xi = xi_material + (options_.energy_rule ? xi_radiation : 0.0);
     if (f_hz > top_hz)
       ++v.skipped_high;
     else if (f_hz < options_.min_frequency_hz)
@@ -120,6 +140,9 @@ ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& mo
       v.modes.push_back(k);
       v.omega_rad_s.push_back(omega);
       v.damping_ratio.push_back(xi);
+      v.radiated_power_w.push_back(power_w);
+      v.radiation_damping.push_back(xi_radiation);
+      v.max_radiation_share = std::max(v.max_radiation_share, xi_radiation / xi_material);
     }
   }
   return v;
@@ -143,7 +166,7 @@ void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& 
   for (const ObjectModel& m : models) {
     voices_.push_back(make_voice(scene, m, rate_hz));
     ModalVoice& v = voices_.back();
-    const auto& all = prepare_entry(v.bank, v.entry);
+    const auto& all = multipoles_[v.bank][v.entry];
     for (const std::size_t k : v.modes) v.transfer.push_back(&all[k]);
     resonator_.emplace_back(v.modes.size() * scene.listeners_m.size(), std::numeric_limits<std::size_t>::max());
     ++stats_.objects;
@@ -152,9 +175,14 @@ void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& 
     stats_.skipped_low += v.skipped_low;
     stats_.skipped_overdamped += v.skipped_overdamped;
     if (v.band_short) ++stats_.band_short;
+    if (v.transfer_bound < 1) ++stats_.bounded;
+    if (options_.energy_rule && v.max_radiation_share > 0.01) ++stats_.radiation_damped;
     (v.base_frequency_from == "scene" ? stats_.from_scene : v.base_frequency_from == "mesh" ? stats_.from_mesh : stats_.from_proxy)++;
   }
   listeners_.assign(scene.listeners_m.size(), kernels::modal::ResonatorBank(rate_hz));
+  energy_.assign(models.size(), {});
+  object_ids_.clear();
+  for (const ObjectModel& m : models) object_ids_.push_back(m.object->id);
 }
 
 std::vector<std::string> ModalSource::coverage(const std::vector<ObjectModel>& models) const {

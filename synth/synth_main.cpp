@@ -63,6 +63,11 @@ void print_summary(const std::vector<synth::SoundSource*>& sources, const std::v
               "resonators, %.3g mode-samples\n",
               m.objects, m.modes, m.skipped_high, m.skipped_low, options.min_frequency_hz, m.skipped_overdamped, m.from_scene, m.from_mesh, m.from_proxy,
               m.excitations, m.resonators.resonators, static_cast<double>(m.resonators.mode_samples));
+  std::printf("clatter-synth: modal: energy: %.3g J into the rendered modes, %.3g J radiated (%.3g); worst object %d radiates "
+              "%.3g of its modes' energy; the energy rule %s: %zu objects' transfer bounded by their surface, %zu with radiation "
+              "damping > 1 %% of their material's (docs/synth.md \"Energy account\")\n",
+              m.injected_j, m.radiated_j, m.injected_j > 0 ? m.radiated_j / m.injected_j : 0.0, m.worst_object, m.worst_ratio,
+              options.energy_rule ? "on" : "OFF", m.bounded, m.radiation_damped);
   for (const auto& [id, radius_m] : modal->transfer_short_objects())
     std::printf("clatter-synth: modal: note: object %d is silent at a listener closer than %.3g m: its proxy, scaled to its base "
                 "frequency, is larger than the object, and its multipoles hold only beyond that (docs/synth.md \"Coverage\")\n",
@@ -182,6 +187,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"float", "pcm24"}))
       ->capture_default_str();
   app.add_flag("--normalize", o.normalize, "scale the peak to 0.99 instead of writing pascals");
+  app.add_flag("--no-energy-rule", [&o](std::int64_t) { o.modal.energy_rule = false; },
+               "render modal sound without the energy rule (docs/synth.md \"Energy account\"), to measure what it changes");
   app.add_flag("--stems", o.stems, "also write one file per source type (OUT.pan.wav, OUT.modal.wav, OUT.ground.wav)");
   try {
     app.parse(argc, argv);

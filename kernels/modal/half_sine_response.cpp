@@ -34,6 +34,17 @@ std::complex<double> HalfSineResponse::integral(double t) const {
   return (expm1_over(i * omega_force_ - s_, t) - expm1_over(-i * omega_force_ - s_, t)) / (2.0 * i);
 }
 
+double HalfSineResponse::energy_after_contact_j() const {
+  const std::complex<double> z = free_ * std::exp(s_ * tau_s_);
+  const double q = z.imag(), q_dot = (s_ * z).imag(), omega_sq = std::norm(s_);  // |s| = omega
+  return 0.5 * (q_dot * q_dot + omega_sq * q * q);
+}
+
+double HalfSineResponse::free_square_integral() const {
+  const std::complex<double> z = free_ * std::exp(s_ * tau_s_);  // int_tau^inf e^{2 s t} = -e^{2 s tau} / (2 s)
+  return 0.5 * (std::norm(z) / (-2 * s_.real()) - (z * z / (-2.0 * s_)).real());
+}
+
 double HalfSineResponse::at(double t) const {
   if (!(t > 0)) return 0;
   if (t >= tau_s_) return (free_ * std::exp(s_ * t)).imag();

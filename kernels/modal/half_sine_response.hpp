@@ -23,6 +23,14 @@ class HalfSineResponse {
   // three exponentials, (e^{i W t} - e^{s t}) / a - (e^{-i W t} - e^{s t}) / b over 2i with
   // a, b = +-i W - s, so consecutive samples cost three complex products instead of exponentials.
   void add_contact_samples(double t_first_s, double dt_s, std::size_t count, double weight, double* out) const;
+  // The mode's energy when the contact ends, (q'^2 + omega^2 q^2) / 2 at t = tau [J for
+  // mass-normalized shapes]: what the contact put into it, less the damping's share during it.
+  double energy_after_contact_j() const;
+  // int_tau^inf q(t)^2 dt [s per unit q^2]: the free ring's square integral, in closed form from
+  // Im(z)^2 = (|z|^2 - Re z^2) / 2 with z = C e^{s t}. A listener whose pressure is w q(t) hears
+  // w^2 times it; the mode's far-field power P per unit q^2 (time-averaged, so 2 P q^2 at the
+  // instant) radiates 2 P times it.
+  double free_square_integral() const;
   std::complex<double> free_phasor() const { return free_; }  // C: q(t) = Im(C e^{s t}) for t >= tau
   std::complex<double> pole() const { return s_; }  // s [1/s]
   double contact_time_s() const { return tau_s_; }

@@ -49,6 +49,12 @@ void pressure_magnitudes(std::span<const Multipole* const> modes, const Eigen::V
   }
 }
 
+double far_field_power_w(const Multipole& m, double rho, double c) {
+  double sum = 0;
+  for (const auto& coefficient : m.coefficients) sum += std::norm(coefficient);
+  return sum / (2 * rho * c * m.k_rad_m * m.k_rad_m);
+}
+
 void add_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::complex<double> strength,
                   std::vector<std::complex<double>>& coefficients) {
   const double r = y_m.norm();

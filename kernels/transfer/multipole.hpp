@@ -46,6 +46,12 @@ int source_order(double k_rad_m, double rho_m);
 // (sum_m |M_n^m|^2 is the order's share of the far-field pattern's L2 norm).
 int truncation_order(const std::vector<std::complex<double>>& coefficients, int order, double tolerance);
 
+// The time-averaged power [W] the expansion radiates per unit modal amplitude: in the far field
+// h_n^(2)(kr) -> i^(n+1) e^{-ikr} / (kr), so r^2 |p|^2 integrated over directions is
+// sum |M_n^m|^2 / k^2 (orthonormal Y_n^m), and the intensity |p|^2 / (2 rho c) gives
+//   P = sum |M_n^m|^2 / (2 rho c k^2).
+double far_field_power_w(const Multipole& m, double air_density_kg_m3, double sound_speed_m_s);
+
 // Mode `mode` of a bank entry's stored transfer (model/modal_bank.hpp).
 Multipole stored_multipole(const model::ModalTransfer& transfer, std::size_t mode);
 

@@ -1,7 +1,9 @@
 // The synthesizer's modal kernels (kernels/modal/): the proxy of 003 eq. (12), the contact point
-// of Appendix F, and the resonators' long-run accuracy, each against a reference derived here.
+// of Appendix F, the resonators' long-run accuracy, and the ellipsoid area of the energy rule,
+// each against a reference derived here.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -9,6 +11,7 @@
 
 #include "kernels/modal/modal_proxy.hpp"
 #include "kernels/modal/resonator_bank.hpp"
+#include "kernels/rigid_body.hpp"
 
 using namespace clatter;
 using namespace clatter::kernels::modal;
@@ -90,5 +93,30 @@ TEST(ResonatorBank, FiveSecondsOfRingingStayOnTheExactSinusoid) {
                 worst / std::abs(c), drift);
     EXPECT_LT(worst, 2 * drift * std::abs(c));
     for (std::size_t n = 0; n < 10; ++n) EXPECT_EQ(out[n], 0.0);
+  }
+}
+
+// The ellipsoid's area (kernels/rigid_body.hpp, for the energy rule of the modal source) against
+// the closed forms of the sphere and the spheroids, the flat limit 2 pi a b, and Thomsen's
+// approximation (within 1.1 %) for a general ellipsoid in every order of its axes.
+TEST(EllipsoidArea, ClosedFormsOfTheSphereAndSpheroidsAndTheFlatLimit) {
+  using clatter::kernels::ellipsoid_surface_area_m2;
+  const double pi = std::numbers::pi;
+  EXPECT_NEAR(ellipsoid_surface_area_m2(0.3, 0.3, 0.3), 4 * pi * 0.09, 1e-14);
+  {  // oblate, a = b = 2, c = 1: 2 pi a^2 (1 + (1 - e^2) atanh(e) / e)
+    const double e = std::sqrt(1 - 0.25), expected = 2 * pi * 4 * (1 + (1 - e * e) * std::atanh(e) / e);
+    EXPECT_NEAR(ellipsoid_surface_area_m2(2, 2, 1), expected, 1e-12 * expected);
+    EXPECT_NEAR(ellipsoid_surface_area_m2(1, 2, 2), expected, 1e-12 * expected);
+  }
+  {  // prolate, a = 2, b = c = 1: 2 pi b^2 (1 + a asin(e) / (b e))
+    const double e = std::sqrt(1 - 0.25), expected = 2 * pi * (1 + 2 * std::asin(e) / e);
+    EXPECT_NEAR(ellipsoid_surface_area_m2(2, 1, 1), expected, 1e-12 * expected);
+  }
+  EXPECT_NEAR(ellipsoid_surface_area_m2(1, 0.8, 1e-4), 2 * pi * 0.8, 1e-3 * 2 * pi * 0.8);  // both faces of the disc
+  const double p = 1.6075, thomsen = 4 * pi * std::pow((std::pow(6.0, p) + std::pow(3.0, p) + std::pow(2.0, p)) / 3, 1 / p);
+  for (const auto& r : {std::array<double, 3>{3, 2, 1}, {1, 3, 2}, {2, 1, 3}}) {
+    const double area = ellipsoid_surface_area_m2(r[0], r[1], r[2]);
+    EXPECT_NEAR(area, thomsen, 0.011 * thomsen);
+    EXPECT_NEAR(area, ellipsoid_surface_area_m2(3, 2, 1), 1e-13 * area);
   }
 }
