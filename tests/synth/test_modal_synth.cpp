@@ -262,9 +262,9 @@ TEST(ModalSynth, DebrisRingsOnlyWhileAlive) {
 
 TEST(ModalSynth, TheEnergyAccountIsTheFarFieldIntensityIntegratedAndDuhamelsEnergy) {
   // One mode with a monopole and a dipole (a directional far field), rung by one impact and heard
-  // at 128 listeners on a sphere of radius 20 m (k r = 550: the far field to 1e-3). Radiated: the
+  // at 32 listeners on a sphere of radius 20 m (k r = 550: the far field to 1e-5). Radiated: the
   // rendered pressure's intensity p^2 / (rho c) integrated over the sphere (Gauss-Legendre in
-  // cos(theta) x the trapezoid rule in phi, exact for the quadratic pattern of an order-1
+  // cos(theta) x the trapezoid rule in phi, exact for |p|^2 of an order-1
   // expansion) and over time from the end of the contact on. Injected: (q'^2 + omega^2 q^2) / 2 at
   // the end of the contact, from Duhamel's integral. Both against the source's account.
   const double f_bank = 3000, f0 = 1500, u0 = 0.37, j = 0.02, tau = 3e-4, t_event = 0.01, radius_m = 20;
@@ -281,7 +281,7 @@ TEST(ModalSynth, TheEnergyAccountIsTheFarFieldIntensityIntegratedAndDuhamelsEner
   scene.duration_s = 0.75;
   scene.listeners_m.clear();
   const Vec3 centre{0, 0, 0.3};
-  const int n_theta = 8, n_phi = 16;
+  const int n_theta = 4, n_phi = 8;
   gsl_integration_glfixed_table* table = gsl_integration_glfixed_table_alloc(n_theta);
   std::vector<double> solid_angle;
   for (int i = 0; i < n_theta; ++i) {
@@ -296,16 +296,18 @@ TEST(ModalSynth, TheEnergyAccountIsTheFarFieldIntensityIntegratedAndDuhamelsEner
   gsl_integration_glfixed_table_free(table);
   const Vec3 dir{0.48, -0.6, 0.64};
   scene.events.push_back(fracture_event(t_event, dir, j, tau));
-  const auto out = synth::render_scene(scene, {&modal}, {}).front();
+  synth::RenderOptions render_options;
+  render_options.rate_hz = 192000;  // the time sum starts within one sample of the contact's end
+  const auto out = synth::render_scene(scene, {&modal}, render_options).front();
 
   const model::ModalBank& bank = modal.banks()[0];
   const double rho_c = bank.header.transfer.air_density_kg_m3 * bank.header.transfer.sound_speed_m_s;
-  const auto first = static_cast<std::size_t>(std::ceil((t_event + tau + radius_m / bank.header.transfer.sound_speed_m_s) * 44100));
+  const auto first = static_cast<std::size_t>(std::ceil((t_event + tau + radius_m / bank.header.transfer.sound_speed_m_s) * render_options.rate_hz));
   double radiated = 0;
   for (std::size_t l = 0; l < out.size(); ++l) {
     double sum = 0;
     for (std::size_t n = first; n < out[l].size(); ++n) sum += out[l][n] * out[l][n];
-    radiated += solid_angle[l] * radius_m * radius_m * sum / 44100 / rho_c;
+    radiated += solid_angle[l] * radius_m * radius_m * sum / render_options.rate_hz / rho_c;
   }
   const synth::ModalVoice& v = modal.voice(0);
   const double omega = v.omega_rad_s[0], xi = v.damping_ratio[0];
@@ -314,12 +316,12 @@ TEST(ModalSynth, TheEnergyAccountIsTheFarFieldIntensityIntegratedAndDuhamelsEner
   const double q = duhamel(tau, omega, xi, tau, g), q_dot = (duhamel(tau + dt, omega, xi, tau, g) - duhamel(tau - dt, omega, xi, tau, g)) / (2 * dt);
   const double injected = 0.5 * (q_dot * q_dot + omega * omega * q * q);
   const synth::ObjectEnergy& account = modal.energy()[0];
-  std::printf("modal: energy account: injected %.6g J (Duhamel %.6g J), radiated %.6g J (far-field intensity over 128 listeners "
-              "%.6g J), ratio %.4g; xi %.4g of which radiation %.4g\n",
-              account.injected_j, injected, account.radiated_j, radiated, account.radiated_j / account.injected_j, xi,
-              v.radiation_damping[0]);
+  std::printf("modal: energy account: injected %.6g J (Duhamel: %.2g off), radiated %.6g J (far-field intensity over 32 "
+              "listeners: %.2g off), ratio %.4g; xi %.4g of which radiation %.4g\n",
+              account.injected_j, account.injected_j / injected - 1, account.radiated_j, account.radiated_j / radiated - 1,
+              account.radiated_j / account.injected_j, xi, v.radiation_damping[0]);
   EXPECT_NEAR(account.injected_j, injected, 1e-6 * injected);
-  EXPECT_NEAR(account.radiated_j, radiated, 2e-3 * radiated);
+  EXPECT_NEAR(account.radiated_j, radiated, 1e-3 * radiated);
   EXPECT_GT(v.radiation_damping[0], 0.1 * xi);
   // A viscous ring dissipates its whole energy, the radiation's share xi_rad / xi of it, to O(xi):
   // the far field's power goes with omega^2 q^2, the damping's with q'^2, equal over each cycle.
