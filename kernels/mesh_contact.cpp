@@ -116,13 +116,13 @@ MeshContact::MeshContact(std::vector<Vec3> vertices_m, std::vector<std::array<in
     const auto [g, l] = uses[1];
     neighbours_[f][k] = g;
     neighbours_[g][l] = f;
-    const Vec3 &nf_ = face_normals_[f], &ng = face_normals_[g];
-    if (dot(nf_, nf_) == 0 || dot(ng, ng) == 0) continue;  // beside a zero-area face: no angle to judge
+    const Vec3 &n_f = face_normals_[f], &n_g = face_normals_[g];
+    if (dot(n_f, n_f) == 0 || dot(n_g, n_g) == 0) continue;  // beside a zero-area face: no angle to judge
     // Convex when g's far corner lies behind f's plane; a concave crease is two contacts on its
     // faces, not one on a ridge, so only convex ones are sharp.
     const int far = triangles_[g][(l + 2) % 3];
-    const bool convex = dot(sub(vertices_[far], vertices_[triangles_[f][k]]), nf_) < 0;
-    if (convex && angle_between(nf_, ng) > rule_.sharp_angle_rad) {
+    const bool convex = dot(sub(vertices_[far], vertices_[triangles_[f][k]]), n_f) < 0;
+    if (convex && angle_between(n_f, n_g) > rule_.sharp_angle_rad) {
       sharp_[f][k] = sharp_[g][l] = true;
       ++sharp_count[key.first];
       ++sharp_count[key.second];

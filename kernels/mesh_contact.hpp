@@ -10,12 +10,14 @@
 //    corner. A contact within rounding_radius_m of a corner is a corner contact: a sphere of that
 //    radius, R = r_min. Else within r_min of a sharp edge: a cylinder of radius r_min along the
 //    edge, flat along it, R = sqrt(r_min R_flat).
-//  - elsewhere (smooth or flat): principal curvatures from a least-squares quadric height field
-//    fitted to the vertices (positions and normals) of the surrounding smooth patch within
-//    fit_edges local edge lengths, never across a sharp edge. Each principal curvature is clamped
-//    to [1 / R_flat, 1 / r_min] (flat, saddle or concave directions count as R_flat), and
+//  - elsewhere (smooth or flat): principal curvatures from a least-squares height field over the
+//    contact face's plane, fitted to the vertices of the surrounding smooth patch (never across a
+//    sharp edge) within fit_edges local edge lengths, at least the 30 nearest: quartic, to heights,
+//    where there are 30; else a quadric to heights and vertex normals. Each principal curvature is
+//    clamped to [1 / R_flat, 1 / r_min] (flat, saddle or concave directions count as R_flat), and
 //    R = 1 / sqrt(kappa_1 kappa_2), the Hertz equivalent radius sqrt(R1 R2).
-// Nothing here returns NaN: bad meshes and points far from the surface throw.
+// Nothing here returns NaN: bad meshes and points far from the surface throw; a fit the vertices
+// leave undetermined counts as flat.
 #include <array>
 #include <vector>
 

@@ -74,8 +74,8 @@ std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string
 namespace {
 
 // Contact duration and half-sine peak of one event. Hertz: effective mass and radius of the pair
-// (the ground: infinite mass, flat); a fracture impulse or a sustained contact brings its own
-// duration.
+// (the ground: infinite mass, flat), each object's radius from its own surface (contact_radius);
+// a fracture impulse or a sustained contact brings its own duration.
 struct Contact {
   double tau_s = 0, peak_force_n = 0;
   Vec3 arm_a{}, arm_b{};

@@ -31,13 +31,16 @@ struct RenderStats {
 
 // stems[s][l]: the samples of source s at listener l. Throws InputError (naming the scene file,
 // object or event) for an object whose inertia cannot be a rigid body's, a listener inside an
-// object, or an object a source cannot voice. A fracture event's impulse acts over its given
-// contact_time_s on piece a alone; every other event's over the Hertz time of the pair.
+// object, an object a source cannot voice, or a contact point far from a mesh object's surface. A
+// fracture event's impulse acts over its given contact_time_s on piece a alone; every other
+// event's over the Hertz time of the pair, whose radii come from the objects' meshes where they
+// have one, else from their proxies (docs/synth.md "Contact from the object's surface").
 std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scene,
                                                            const std::vector<SoundSource*>& sources,
                                                            const RenderOptions& options, RenderStats* stats = nullptr);
 
-// The objects' proxies (eq. 11); InputError names the object.
+// The objects' proxies (eq. 11) and, for objects given by a mesh, their contact surfaces
+// (kernels/mesh_contact.hpp, one per mesh file); InputError names the object.
 std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string& scene_path);
 
 }  // namespace clatter::synth
