@@ -196,9 +196,9 @@ std::array<double, 2> MeshContact::fitted_curvatures(int face, const Vec3& q) co
   // lengths, and at least kQuartic of the nearest (within 2 rho) where a coarse patch has fewer.
   constexpr std::size_t kQuartic = 30;  // twice the quartic's 15 unknowns
   const auto& t0 = triangles_[face];
-  double edge_sum = 0;
-  for (int k = 0; k < 3; ++k) edge_sum += norm(sub(vertices_[t0[(k + 1) % 3]], vertices_[t0[k]]));
-  const double rho = rule_.fit_edges * edge_sum / 3;
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) shortest = std::min(shortest, norm(sub(vertices_[t0[(k + 1) % 3]], vertices_[t0[k]])));
+  const double rho = rule_.fit_edges * shortest;
   const int comp = component_[face];
   std::vector<std::pair<double, int>> near;  // (distance, vertex)
   std::vector<char> seen_face(triangles_.size(), 0), seen_vertex(vertices_.size(), 0);

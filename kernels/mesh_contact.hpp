@@ -29,7 +29,7 @@ struct MeshContactRule {
   double rounding_radius_m = 0;  // r_min: the rounding of sharp edges and corners, > 0
   double flat_radius_m = 0;      // R_flat: the largest radius of curvature, >= r_min
   double sharp_angle_rad = 0.5235987755982988;  // 30 degrees between the normals of two faces
-  double fit_edges = 2.5;        // the fit's neighbourhood radius, in local edge lengths
+  double fit_edges = 2.5;        // the fit's neighbourhood radius, in the contact face's shortest edges
   double max_offset_m = 0;       // a contact point farther from the surface than this throws
 };
 

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 
 #include "kernels/mesh_contact.hpp"
 #include "tests/unit/test_meshes.hpp"
@@ -84,7 +85,34 @@ TEST(MeshContact, EllipsoidPrincipalCurvatures) {
   EXPECT_NEAR(tip.curvature_2_per_m / (a / (b * b)), 1, 0.0003);
 }
 
-// A 10 cm cube, faces of 1 x 1 and 4 x 4 squares: a face gives R_flat, an edge sqrt(r_min R_flat), a
+// A cylinder r = 5 cm, 20 cm long: on its side kappa_1 = 1 / r across, the axis flat (clamped to
+// 1 / R_flat), R = sqrt(r R_flat); its caps are flat, its rims sharp edges. Long side triangles
+// (the fit's neighbourhood follows the contact face's shortest edge).
+TEST(MeshContact, CylinderSideCapAndRim) {
+  const double r = 0.05, r_min = 1e-3, r_flat = 1.0;
+  kernels::MeshContactRule rule;
+  rule.rounding_radius_m = r_min;
+  rule.flat_radius_m = r_flat;
+  rule.max_offset_m = 0.05;
+  for (const auto& [segments, rings, tolerance] : {std::tuple{64, 8, 0.015}, std::tuple{128, 16, 0.002}}) {
+    const auto contact = contact_of(test::cylinder(r, 0.2, segments, rings), rule);
+    for (const double angle : {0.0, 0.3, 2.0}) {
+      const auto side = contact.at({r * std::cos(angle), r * std::sin(angle), 0.07});
+      EXPECT_EQ(side.feature, ContactFeature::smooth);
+      EXPECT_NEAR(side.curvature_1_per_m * r, 1, tolerance) << segments << " at " << angle;
+      EXPECT_DOUBLE_EQ(side.curvature_2_per_m, 1 / r_flat);
+      EXPECT_NEAR(side.radius_m / std::sqrt(r * r_flat), 1, tolerance);
+    }
+    const auto cap = contact.at({0.01, 0.02, -0.001});
+    EXPECT_EQ(cap.feature, ContactFeature::smooth);
+    EXPECT_DOUBLE_EQ(cap.radius_m, r_flat);
+    const auto rim = contact.at({r * 1.01, 0, 0.2});
+    EXPECT_EQ(rim.feature, ContactFeature::edge);
+    EXPECT_NEAR(rim.radius_m, std::sqrt(r_min * r_flat), 1e-12);
+  }
+}
+
+// A 10 cm cube, faces of 1 x 1, 4 x 4 and 8 x 8 squares: a face gives R_flat, an edge sqrt(r_min R_flat), a
 // corner r_min, whatever the tessellation; within r_min of an edge counts as on it.
 TEST(MeshContact, BoxFaceEdgeAndCornerFollowTheRule) {
   const double side = 0.1, r_min = 1e-3, r_flat = 0.06;
@@ -92,7 +120,7 @@ TEST(MeshContact, BoxFaceEdgeAndCornerFollowTheRule) {
   rule.rounding_radius_m = r_min;
   rule.flat_radius_m = r_flat;
   rule.max_offset_m = 0.05;
-  for (const int n : {1, 4}) {
+  for (const int n : {1, 4, 8}) {  // 8 x 8: 81 vertices a face, enough for the quartic fit
     const auto contact = contact_of(test::box({side, side, side}, n), rule);
     struct Case {
       Vec3 point;

@@ -1,6 +1,6 @@
 #pragma once
-// Closed triangle meshes made in the test instead of stored: an icosphere (vertices on the sphere)
-// and a box whose faces are split into n x n squares, both wound counter-clockwise seen from
+// Closed triangle meshes made in the test instead of stored: an icosphere (vertices on the sphere),
+// a box whose faces are split into n x n squares and a capped cylinder, both wound counter-clockwise seen from
 // outside, and an OBJ writer for tests that go through the scene reader.
 #include <algorithm>
 #include <array>
@@ -78,6 +78,30 @@ inline io::TriangleMesh box(std::array<double, 3> size_m, int n = 1) {
           else m.triangles.insert(m.triangles.end(), {{a, c, b}, {a, d, c}});
         }
     }
+  return m;
+}
+
+// The closed cylinder of radius_m about the z axis from z = 0 to height_m: `segments` around,
+// `rings` bands of two triangles a quad along it, each cap a fan about its centre.
+inline io::TriangleMesh cylinder(double radius_m, double height_m, int segments, int rings) {
+  io::TriangleMesh m;
+  for (int j = 0; j <= rings; ++j)
+    for (int i = 0; i < segments; ++i) {
+      const double a = 2 * 3.14159265358979323846 * i / segments;
+      m.vertices_m.push_back({radius_m * std::cos(a), radius_m * std::sin(a), height_m * j / rings});
+    }
+  const int bottom = static_cast<int>(m.vertices_m.size());
+  m.vertices_m.push_back({0, 0, 0});
+  m.vertices_m.push_back({0, 0, height_m});
+  for (int j = 0; j < rings; ++j)
+    for (int i = 0; i < segments; ++i) {
+      const int a = j * segments + i, b = j * segments + (i + 1) % segments, c = b + segments, d = a + segments;
+      m.triangles.insert(m.triangles.end(), {{a, b, c}, {a, c, d}});
+    }
+  for (int i = 0; i < segments; ++i) {
+    const int next = (i + 1) % segments, top_ring = rings * segments;
+    m.triangles.insert(m.triangles.end(), {{bottom, next, i}, {bottom + 1, top_ring + i, top_ring + next}});
+  }
   return m;
 }
 
