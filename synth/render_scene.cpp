@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -29,11 +30,14 @@ double proxy_contact_radius(const kernels::ProxyFit& fit, const Vec3& arm_body) 
 
 // The object's radius of curvature at the contact (arm: body frame, from the centre of mass): its
 // mesh's where it has one (kernels/mesh_contact.hpp; the body frame is the mesh frame moved to the
-// centre of mass), else its proxy's.
-double contact_radius(const ObjectModel& m, const Vec3& arm_body, const std::string& where) {
+// centre of mass), else its proxy's. `feature` gets the mesh's feature there, -1 for the proxy.
+double contact_radius(const ObjectModel& m, const Vec3& arm_body, const std::string& where, int& feature) {
+  feature = -1;
   if (!m.contact) return proxy_contact_radius(m.proxy, arm_body);
   try {
-    return m.contact->at(add(arm_body, m.object->rest_centre_m)).radius_m;
+    const kernels::MeshContactPoint p = m.contact->at(add(arm_body, m.object->rest_centre_m));
+    feature = static_cast<int>(p.feature);
+    return p.radius_m;
   } catch (const std::invalid_argument& e) {
     throw InputError(fmt::format("{}: object {} ({}): {}", where, m.object->id, m.object->mesh_path, e.what()));
   }
@@ -79,6 +83,7 @@ namespace {
 struct Contact {
   double tau_s = 0, peak_force_n = 0;
   Vec3 arm_a{}, arm_b{};
+  std::array<int, 2> feature{-1, -1};  // kernels::ContactFeature on a's and b's mesh; -1: none
 };
 
 Contact event_contact(const io::Scene& scene, const io::SceneEvent& e, const ObjectModel* a, const ObjectModel* b, double j) {
@@ -88,9 +93,9 @@ Contact event_contact(const io::Scene& scene, const io::SceneEvent& e, const Obj
   if (e.fracture || e.sustained) {
     c.tau_s = e.contact_time_s;
   } else {
-    double inv_r = 1 / contact_radius(*a, c.arm_a, e.where), inv_m = 1 / a->object->mass_kg;
+    double inv_r = 1 / contact_radius(*a, c.arm_a, e.where, c.feature[0]), inv_m = 1 / a->object->mass_kg;
     if (b) {
-      inv_r += 1 / contact_radius(*b, c.arm_b, e.where);
+      inv_r += 1 / contact_radius(*b, c.arm_b, e.where, c.feature[1]);
       inv_m += 1 / b->object->mass_kg;
     }
     const auto& mat_a = scene.materials.at(a->object->material);
@@ -129,6 +134,8 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
       continue;
     }
     const Contact contact = event_contact(scene, e, a, b, j);
+    for (const int f : contact.feature)
+      if (f >= 0) ++local.mesh_contacts[static_cast<std::size_t>(f)];
     const Vec3 dir_world{e.impulse_n_s[0] / j, e.impulse_n_s[1] / j, e.impulse_n_s[2] / j};
     for (int side = 0; side < (b ? 2 : 1); ++side) {
       const ObjectModel* m = side == 0 ? a : b;

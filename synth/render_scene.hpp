@@ -1,6 +1,7 @@
 #pragma once
 // The synthesizer's one loop: events in time order, each split into one Impact per object it
 // moves (Hertz duration, half-sine force), fed to every sound source for every listener.
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct RenderStats {
   std::size_t fracture_impacts = 0; // of `impacts`, fracture impulses (003 section 3.3)
   std::size_t sustained_impacts = 0;  // of `impacts`, sustained contacts (resting, sliding)
   std::size_t skipped_sustained = 0;  // sustained-contact events longer than max_sustained_s, not rendered
+  // Hertz contacts taken on an object's own mesh, by kernels::ContactFeature: smooth (or flat), edge,
+  // corner (one per object side with a mesh).
+  std::array<std::size_t, 3> mesh_contacts{};
   std::vector<std::vector<std::string>> coverage;  // per source: objects outside its bank's coverage
 };
 

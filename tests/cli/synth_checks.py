@@ -177,6 +177,18 @@ hertz_proxy = render(closed_form, "closed-form-hertz")
 dev = np.abs(hertz_mesh - hertz_proxy).max() / np.abs(hertz_proxy).max()
 check(np.all(np.isfinite(hertz_mesh)) and np.abs(hertz_mesh).max() > 0 and dev > 1e-3,
       f"the meshed box's Hertz contacts come from its mesh, not the proxy: renders, and differs from the proxy's by {dev:.2e} of the peak")
+# Its first ground hit moved onto a corner, and its hit by object 2 (both unrotated) onto the
+# vertical edge x = +a/2, y = +b/2: the summary counts 3 face, 1 edge and 1 corner contact.
+featured = copy.deepcopy(meshed)
+first = featured["events"][0]
+pair = [e for e in featured["events"] if e["a"] == 1 and e["b"] == 2][0]
+assert first["pose_a"]["orientation_wxyz"] == [1.0, 0, 0, 0.0] and pair["pose_a"]["orientation_wxyz"] == [1, 0, 0, 0]
+first["point_m"] = [first["pose_a"]["position_m"][0] - box_a / 2, -box_b / 2, first["pose_a"]["position_m"][2] - box_c / 2]
+pair["point_m"] = [pair["pose_a"]["position_m"][0] + box_a / 2, box_b / 2, pair["pose_a"]["position_m"][2]]
+r, _ = run(featured, "featured")
+check(r.returncode == 0 and "Hertz contacts on objects' own meshes: 3 on smooth or flat surface, 1 on sharp edges, 1 on corners" in r.stdout,
+      "the meshed box hit on faces, an edge and a corner: contacts counted by feature ("
+      + " ".join([l for l in r.stdout.splitlines() if "own meshes" in l] or [r.stderr.strip()]) + ")")
 # The James-lab format with that mesh: rest-pose contact points are in the mesh's coordinates,
 # i.e. shifted by the box's centre of mass.
 shifted = []

@@ -6,6 +6,7 @@
 // and corner. No bank file: a source that records the impacts stands in for PAN, modal and ground.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -73,7 +74,7 @@ Quaternion about(Vec3 axis, double angle_rad) {
 // Writes the meshes and a scene (objects: 1 a 0.1 m icosphere of 5120 triangles, 2 a 0.1 m cube
 // mesh whose faces are 2 x 2 squares, 3 the same cube given by numbers) with the drops, then loads
 // and renders it; the Hertz time of each impact in order.
-std::vector<double> render_drops(const std::vector<Drop>& drops, Recorder& rec) {
+std::vector<double> render_drops(const std::vector<Drop>& drops, Recorder& rec, synth::RenderStats* stats = nullptr) {
   const auto dir = std::filesystem::temp_directory_path() / "clatter-contact-synth";
   std::filesystem::create_directories(dir);
   test::write_obj(test::icosphere(0.1, 4, {1, 2, 3}), (dir / "sphere.obj").string());  // off the origin: the body frame is the centre's
@@ -93,7 +94,7 @@ std::vector<double> render_drops(const std::vector<Drop>& drops, Recorder& rec) 
   const io::Scene scene = synth::load_scene((dir / "scene.json").string());
   synth::RenderOptions options;
   options.rate_hz = 8000;
-  synth::render_scene(scene, {&rec}, options);
+  synth::render_scene(scene, {&rec}, options, stats);
   return rec.taus_s;
 }
 
@@ -108,8 +109,10 @@ TEST(ContactSynth, SphereMeshGivesTheSpheresHertzTime) {
   for (const Vec3& d : std::vector<Vec3>{{0, 0, -1}, {0.6, 0, -0.8}, {0.36, 0.48, -0.8}, {-0.48, 0.6, -0.64}})
     drops.push_back({1, turned, scale(d, radius)});
   Recorder rec;
-  const auto taus = render_drops(drops, rec);
+  synth::RenderStats stats;
+  const auto taus = render_drops(drops, rec, &stats);
   ASSERT_EQ(taus.size(), drops.size());
+  EXPECT_EQ(stats.mesh_contacts, (std::array<std::size_t, 3>{4, 0, 0}));  // all smooth
   const double expected = hertz_s(mass, radius, 1.0);
   for (const double tau : taus) {
     std::printf("icosphere: tau %.3f us, the sphere's %.3f us, error %+.3f %%\n", tau * 1e6, expected * 1e6, 100 * (tau / expected - 1));
@@ -129,8 +132,10 @@ TEST(ContactSynth, CubeFaceEdgeAndCornerTimes) {
   const std::vector<Drop> drops{{2, level, {0, 0, -h}}, {2, on_edge, {0.01, -h, -h}}, {2, on_corner, {-h, -h, -h}},
                                 {3, level, {0, 0, -h}}, {3, on_corner, {-h, -h, -h}}};
   Recorder rec;
-  const auto taus = render_drops(drops, rec);
+  synth::RenderStats stats;
+  const auto taus = render_drops(drops, rec, &stats);
   ASSERT_EQ(taus.size(), drops.size());
+  EXPECT_EQ(stats.mesh_contacts, (std::array<std::size_t, 3>{1, 1, 1}));  // object 3 has no mesh
   const double face = hertz_s(mass, r_eq, 1.0), edge = hertz_s(mass, std::sqrt(r_min * r_eq), 1.0), corner = hertz_s(mass, r_min, 1.0);
   std::printf("10 cm granite cube at 1 m/s on granite: face %.1f us, edge %.1f us, corner %.1f us (rule: %.1f, %.1f, %.1f)\n",
               taus[0] * 1e6, taus[1] * 1e6, taus[2] * 1e6, face * 1e6, edge * 1e6, corner * 1e6);
