@@ -192,8 +192,9 @@ Vec3 MeshContact::patch_normal(int vertex, int component) const {
 
 std::array<double, 2> MeshContact::fitted_curvatures(int face, const Vec3& q) const {
   // Neighbourhood: the patch's vertices near q, gathered by walking from the contact face across
-  // non-sharp edges, so that a fit never straddles a ridge: those within rho = fit_edges local edge
-  // lengths, and at least kQuartic of the nearest (within 2 rho) where a coarse patch has fewer.
+  // non-sharp edges, so that a fit never straddles a ridge: those within rho = fit_edges times the
+  // contact face's shortest edge (long thin faces along a cylinder must not widen the fit across
+  // it), and at least the kQuartic nearest (within 2 rho) where fewer lie within rho.
   constexpr std::size_t kQuartic = 30;  // twice the quartic's 15 unknowns
   const auto& t0 = triangles_[face];
   double shortest = std::numeric_limits<double>::infinity();

@@ -12,10 +12,11 @@
 //    edge, flat along it, R = sqrt(r_min R_flat).
 //  - elsewhere (smooth or flat): principal curvatures from a least-squares height field over the
 //    contact face's plane, fitted to the vertices of the surrounding smooth patch (never across a
-//    sharp edge) within fit_edges local edge lengths, at least the 30 nearest: quartic, to heights,
-//    where there are 30; else a quadric to heights and vertex normals. Each principal curvature is
-//    clamped to [1 / R_flat, 1 / r_min] (flat, saddle or concave directions count as R_flat), and
-//    R = 1 / sqrt(kappa_1 kappa_2), the Hertz equivalent radius sqrt(R1 R2).
+//    sharp edge) within fit_edges of the contact face's shortest edges, at least the 30 nearest
+//    (within twice that): quartic, to heights, where there are 30; else a quadric to heights and
+//    vertex normals. Each principal curvature is clamped to [1 / R_flat, 1 / r_min] (flat, saddle
+//    or concave directions count as R_flat), and R = 1 / sqrt(kappa_1 kappa_2), the Hertz
+//    equivalent radius sqrt(R1 R2).
 // Nothing here returns NaN: bad meshes and points far from the surface throw; a fit the vertices
 // leave undetermined counts as flat.
 #include <array>
