@@ -4,9 +4,11 @@
 #include <array>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "io/mesh.hpp"
 #include "model/material.hpp"
 
 namespace clatter::io {
@@ -26,6 +28,9 @@ struct SceneObject {
   // given; synth::load_scene then fills in mass, volume, inertia and rest_centre_m.
   std::string mesh_path;
   double density_kg_m3 = 0;
+  // The mesh itself, once synth::load_scene has read it (objects of one file share it), in its own
+  // frame: contact takes the local curvature from it. Null for objects given by numbers.
+  std::shared_ptr<const TriangleMesh> mesh;
   // The centre of mass in the rest-pose coordinates (the mesh's; 0 for objects given by numbers),
   // about which the James-lab format's rest-pose contact points are taken.
   std::array<double, 3> rest_centre_m{};

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <tuple>
 
@@ -15,7 +16,7 @@ namespace clatter::synth {
 namespace {
 
 struct Solid {
-  io::TriangleMesh mesh;
+  std::shared_ptr<const io::TriangleMesh> mesh;
   kernels::MeshMassProperties props;
 };
 
@@ -31,7 +32,7 @@ Solid solid_of(const std::string& mesh_path, const std::string& where) {
   if (!(props.volume_m3 > 0))
     throw InputError(fmt::format("{}.mesh: {} encloses a signed volume of {} m^3: faces must wind counter-clockwise seen from outside",
                                  where, mesh_path, props.volume_m3));
-  return {std::move(mesh), props};
+  return {std::make_shared<const io::TriangleMesh>(std::move(mesh)), props};
 }
 
 // omega_0 of the object's solid in its material, computed once per mesh file and material.
@@ -43,7 +44,7 @@ double base_frequency_hz(const io::Scene& scene, const io::SceneObject& o, const
   const auto it = cache.find(key);
   if (it != cache.end()) return it->second;
   try {
-    const double f = kernels::fem::lowest_free_mode(solid.mesh.vertices_m, solid.mesh.triangles, m.youngs_pa, m.poisson,
+    const double f = kernels::fem::lowest_free_mode(solid.mesh->vertices_m, solid.mesh->triangles, m.youngs_pa, m.poisson,
                                                     rho).frequency_hz;
     return cache[key] = f;
   } catch (const std::invalid_argument& e) {
@@ -71,6 +72,7 @@ io::Scene load_scene(const std::string& scene_path, const std::string& impulses_
     auto it = solids.find(o.mesh_path);
     if (it == solids.end()) it = solids.emplace(o.mesh_path, solid_of(o.mesh_path, o.where)).first;
     set_mass_properties(o, it->second.props);
+    o.mesh = it->second.mesh;
     if (base_frequencies && !(o.base_frequency_hz > 0)) {
       o.base_frequency_hz = base_frequency_hz(scene, o, it->second, frequencies);
       o.base_frequency_from = "mesh";

@@ -2,9 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "core/errors.hpp"
 #include "core/stage_log.hpp"
@@ -15,7 +18,7 @@ namespace {
 
 // Radius of curvature of the proxy ellipsoid where the ray along `arm` (proxy frame) leaves it:
 // 1 / sqrt(Gaussian curvature), K = 1 / (a b c)^2 / (x^2/a^4 + y^2/b^4 + z^2/c^4)^2.
-double contact_radius(const kernels::ProxyFit& fit, const Vec3& arm_body) {
+double proxy_contact_radius(const kernels::ProxyFit& fit, const Vec3& arm_body) {
   const Vec3 d = kernels::to_proxy_frame(fit, arm_body);
   const double a = fit.a_m, b = fit.b_m, c = fit.c_m;
   const double s = std::sqrt(d[0] * d[0] / (a * a) + d[1] * d[1] / (b * b) + d[2] * d[2] / (c * c));
@@ -25,10 +28,26 @@ double contact_radius(const kernels::ProxyFit& fit, const Vec3& arm_body) {
   return a * b * c * q;  // = 1 / sqrt(K)
 }
 
+// The object's radius of curvature at the contact (arm: body frame, from the centre of mass): its
+// mesh's where it has one (kernels/mesh_contact.hpp; the body frame is the mesh frame moved to the
+// centre of mass), else its proxy's. `feature` gets the mesh's feature there, -1 for the proxy.
+double contact_radius(const ObjectModel& m, const Vec3& arm_body, const std::string& where, int& feature) {
+  feature = -1;
+  if (!m.contact) return proxy_contact_radius(m.proxy, arm_body);
+  try {
+    const kernels::MeshContactPoint p = m.contact->at(add(arm_body, m.object->rest_centre_m));
+    feature = static_cast<int>(p.feature);
+    return p.radius_m;
+  } catch (const std::invalid_argument& e) {
+    throw InputError(fmt::format("{}: object {} ({}): {}", where, m.object->id, m.object->mesh_path, e.what()));
+  }
+}
+
 }  // namespace
 
 std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string& scene_path) {
   std::vector<ObjectModel> models;
+  std::map<const io::TriangleMesh*, std::shared_ptr<const kernels::MeshContact>> contacts;  // one per mesh file
   for (const auto& o : scene.objects) {
     ObjectModel m;
     m.object = &o;
@@ -38,6 +57,19 @@ std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string
     } catch (const std::invalid_argument& e) {
       throw InputError(fmt::format("{}: object {}: inertia_kg_m2: {}", scene_path, o.id, e.what()));
     }
+    if (o.mesh) {
+      auto& contact = contacts[o.mesh.get()];
+      if (!contact) {
+        try {
+          contact = std::make_shared<const kernels::MeshContact>(
+              o.mesh->vertices_m, o.mesh->triangles,
+              kernels::mesh_contact_rule(m.proxy, o.volume_m3, o.mesh->vertices_m, o.rest_centre_m));
+        } catch (const std::invalid_argument& e) {
+          throw InputError(fmt::format("{}: object {}: mesh {}: {}", scene_path, o.id, o.mesh_path, e.what()));
+        }
+      }
+      m.contact = contact;
+    }
     models.push_back(m);
   }
   return models;
@@ -46,11 +78,12 @@ std::vector<ObjectModel> object_models(const io::Scene& scene, const std::string
 namespace {
 
 // Contact duration and half-sine peak of one event. Hertz: effective mass and radius of the pair
-// (the ground: infinite mass, flat); a fracture impulse or a sustained contact brings its own
-// duration.
+// (the ground: infinite mass, flat), each object's radius from its own surface (contact_radius);
+// a fracture impulse or a sustained contact brings its own duration.
 struct Contact {
   double tau_s = 0, peak_force_n = 0;
   Vec3 arm_a{}, arm_b{};
+  std::array<int, 2> feature{-1, -1};  // kernels::ContactFeature on a's and b's mesh; -1: none
 };
 
 Contact event_contact(const io::Scene& scene, const io::SceneEvent& e, const ObjectModel* a, const ObjectModel* b, double j) {
@@ -60,9 +93,9 @@ Contact event_contact(const io::Scene& scene, const io::SceneEvent& e, const Obj
   if (e.fracture || e.sustained) {
     c.tau_s = e.contact_time_s;
   } else {
-    double inv_r = 1 / contact_radius(a->proxy, c.arm_a), inv_m = 1 / a->object->mass_kg;
+    double inv_r = 1 / contact_radius(*a, c.arm_a, e.where, c.feature[0]), inv_m = 1 / a->object->mass_kg;
     if (b) {
-      inv_r += 1 / contact_radius(b->proxy, c.arm_b);
+      inv_r += 1 / contact_radius(*b, c.arm_b, e.where, c.feature[1]);
       inv_m += 1 / b->object->mass_kg;
     }
     const auto& mat_a = scene.materials.at(a->object->material);
@@ -101,6 +134,8 @@ std::vector<std::vector<std::vector<double>>> render_scene(const io::Scene& scen
       continue;
     }
     const Contact contact = event_contact(scene, e, a, b, j);
+    for (const int f : contact.feature)
+      if (f >= 0) ++local.mesh_contacts[static_cast<std::size_t>(f)];
     const Vec3 dir_world{e.impulse_n_s[0] / j, e.impulse_n_s[1] / j, e.impulse_n_s[2] / j};
     for (int side = 0; side < (b ? 2 : 1); ++side) {
       const ObjectModel* m = side == 0 ? a : b;

@@ -10,6 +10,7 @@
 
 #include "core/rotation.hpp"
 #include "io/scene.hpp"
+#include "kernels/mesh_contact.hpp"
 #include "kernels/rigid_body.hpp"
 #include "model/pan_bank.hpp"
 
@@ -19,6 +20,9 @@ struct ObjectModel {
   const io::SceneObject* object = nullptr;
   std::size_t index = 0;    // in scene.objects
   kernels::ProxyFit proxy;  // the equivalent ellipsoid (eq. 11, volume matched)
+  // The object's own surface for contact (its mesh's frame, shared by objects of one mesh file);
+  // null for an object given by numbers, whose contact is the proxy's surface.
+  std::shared_ptr<const kernels::MeshContact> contact;
 };
 
 // One object's share of one event, in the object's body frame.

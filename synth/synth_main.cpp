@@ -142,6 +142,11 @@ int run(const Options& o) {
               "objects not alive then, %zu sustained contacts longer than %g s, skipped) rendered in %.3f s\n",
               stats.impacts, stats.fracture_impacts, stats.sustained_impacts, scene.events.size(), stats.skipped_inactive,
               stats.skipped_sustained, o.max_sustained_s, render_s);
+  const auto& mc = stats.mesh_contacts;
+  if (mc[0] + mc[1] + mc[2] > 0)
+    std::printf("clatter-synth: Hertz contacts on objects' own meshes: %zu on smooth or flat surface, %zu on sharp edges, "
+                "%zu on corners (docs/synth.md \"Contact from the object's surface\")\n",
+                mc[0], mc[1], mc[2]);
   for (std::size_t s = 0; s < sources.size(); ++s) {
     const auto& lines = stats.coverage[s];
     if (lines.empty()) {

@@ -3,7 +3,8 @@
 - linearity: a scene with two events renders to the sum of the scenes with each alone;
 - fracture debris: an object created at t0 is silent before t0 (its earlier event is skipped);
 - the James-lab impulse text format gives the same sound as the equivalent native scene;
-- an object given by a closed mesh sounds as one given by the mesh's closed-form mass properties;
+- an object given by a closed mesh sounds as one given by the mesh's closed-form mass properties
+  (contact times given), and with Hertz times its contacts come from the mesh;
 - bad input: exit 2, one error line naming the field, and no output file.
 Usage: synth_checks.py CLATTER_SYNTH BANK DEMO_SCENE SCRATCH"""
 import copy, json, math, os, shutil, subprocess, sys
@@ -153,10 +154,41 @@ closed_form = copy.deepcopy(demo)
 closed_form["objects"][0].update(mass_kg=mass, volume_m3=vol, inertia_kg_m2=[
     [mass * (box_b**2 + box_c**2) / 12, 0, 0], [0, mass * (box_a**2 + box_c**2) / 12, 0], [0, 0, mass * (box_a**2 + box_b**2) / 12]])
 meshed = mutate(mesh_object(mesh="box.obj", density_kg_m3=rho))
-ref = render(closed_form, "closed_form")
-got = render(meshed, "meshed")
+
+
+def given_times(scene):  # every event a contact of given duration: no Hertz time, no contact geometry
+    s = copy.deepcopy(scene)
+    for e in s["events"]:
+        if "normal_speed_m_s" in e:
+            del e["normal_speed_m_s"]
+            e["contact_time_s"] = 3e-4
+    return s
+
+
+ref = render(given_times(closed_form), "closed_form")
+got = render(given_times(meshed), "meshed")
 err = np.abs(got - ref).max() / np.abs(ref).max()
-check(err < 1e-6, f"an object given by its closed mesh = the box's closed-form mass properties, max deviation {err:.2e} of the peak")
+check(err < 1e-6, f"an object given by its closed mesh = the box's closed-form mass properties (contact times given), "
+      f"max deviation {err:.2e} of the peak")
+# With Hertz times, the meshed box's contacts take its own surface's curvature (flat faces, edges,
+# corners: docs/synth.md "Contact") where the closed-form box has only its proxy ellipsoid's.
+hertz_mesh = render(meshed, "meshed-hertz")
+hertz_proxy = render(closed_form, "closed-form-hertz")
+dev = np.abs(hertz_mesh - hertz_proxy).max() / np.abs(hertz_proxy).max()
+check(np.all(np.isfinite(hertz_mesh)) and np.abs(hertz_mesh).max() > 0 and dev > 1e-3,
+      f"the meshed box's Hertz contacts come from its mesh, not the proxy: renders, and differs from the proxy's by {dev:.2e} of the peak")
+# Its first ground hit moved onto a corner, and its hit by object 2 (both unrotated) onto the
+# vertical edge x = +a/2, y = +b/2: the summary counts 3 face, 1 edge and 1 corner contact.
+featured = copy.deepcopy(meshed)
+first = featured["events"][0]
+pair = [e for e in featured["events"] if e["a"] == 1 and e["b"] == 2][0]
+assert first["pose_a"]["orientation_wxyz"] == [1.0, 0, 0, 0.0] and pair["pose_a"]["orientation_wxyz"] == [1, 0, 0, 0]
+first["point_m"] = [first["pose_a"]["position_m"][0] - box_a / 2, -box_b / 2, first["pose_a"]["position_m"][2] - box_c / 2]
+pair["point_m"] = [pair["pose_a"]["position_m"][0] + box_a / 2, box_b / 2, pair["pose_a"]["position_m"][2]]
+r, _ = run(featured, "featured")
+check(r.returncode == 0 and "Hertz contacts on objects' own meshes: 3 on smooth or flat surface, 1 on sharp edges, 1 on corners" in r.stdout,
+      "the meshed box hit on faces, an edge and a corner: contacts counted by feature ("
+      + " ".join([l for l in r.stdout.splitlines() if "own meshes" in l] or [r.stderr.strip()]) + ")")
 # The James-lab format with that mesh: rest-pose contact points are in the mesh's coordinates,
 # i.e. shifted by the box's centre of mass.
 shifted = []
@@ -165,7 +197,7 @@ for line in lines[1:]:  # the demo's events as above
     if f[2] == "1":  # object 1 is always A in the demo
         f[3:6] = [f"{float(f[3 + k]) + centre[k]:.17g}" for k in range(3)]
     shifted.append(" ".join(f))
-render_james(meshed, shifted, "james-mesh", ref, "James-lab file, contact points in mesh coordinates")
+render_james(meshed, shifted, "james-mesh", hertz_mesh, "James-lab file, contact points in mesh coordinates (contact on the mesh)")
 open("open.obj", "w").write(obj_text + "".join(f"f {q}\n" for q in quads[:5]))
 open("inward.obj", "w").write(obj_text + "".join(f"f {' '.join(reversed(q.split()))}\n" for q in quads))
 
@@ -184,6 +216,9 @@ cases = [
     ("missing mesh file", mutate(mesh_object(mesh="nowhere.obj", mass_kg=1.0)), ["nowhere.obj", "cannot open"]),
     ("mesh and inertia both", mutate(lambda s: s["objects"][0].update(mesh="box.obj")), ["objects[0].volume_m3", "not both"]),
     ("mesh without mass or density", mutate(mesh_object(mesh="box.obj")), ["objects[0]", "density_kg_m3"]),
+    ("contact far from the mesh", mutate(lambda s: (mesh_object(mesh="box.obj", density_kg_m3=rho)(s),
+                                                    s["events"][0].update(point_m=[-0.6, 0.0, -0.5]))),
+     ["events[0]", "object 1", "from the mesh's surface"]),
 ]
 for name, scene, fragments in cases:
     r, _ = run(scene, "bad")

@@ -105,6 +105,8 @@ mesh_scene["objects"] = [{"id": 1, "mesh": "box.obj", "density_kg_m3": 2600, "ma
 mesh_scene["events"] = [dict(e, a=k + 1) for k, e in enumerate(scene["events"] * 3)]
 for e in mesh_scene["events"]:
     e["pose_a"] = {"position_m": [0, 0, 0], "orientation_wxyz": [1, 0, 0, 0]}
+    if e["a"] != 3:  # on the boxes' bottom face: a mesh's contact is taken on its surface (docs/synth.md "Contact")
+        e["point_m"] = [0, 0, -c / 2]
 mesh_scene["listeners"] = [{"position_m": [2.0, 4.0, 4.0]}]
 json.dump(mesh_scene, open("mesh.json", "w"))
 r = subprocess.run([synth, "-i", "mesh.json", "-m", modal_bank, "-o", "mesh.wav"], capture_output=True, text=True)
