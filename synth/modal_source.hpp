@@ -42,8 +42,8 @@ struct ModalVoice {
   std::vector<std::size_t> modes;   // entry modes rendered
   std::vector<double> omega_rad_s, damping_ratio;  // of those, scaled and in the object's material
   std::vector<const kernels::transfer::Multipole*> transfer;  // of those, the bank's (unscaled)
-  // The energy rule (docs/synth.md "Energy account"). surface_ratio: the object's surface area (of
-  // its fitted ellipsoid) over the scaled proxy's; transfer_bound: min(1, sqrt(surface_ratio)), the
+  // The energy rule (docs/synth.md "Energy account"). surface_ratio: the object's surface area (its
+  // mesh's, else its equivalent ellipsoid's) over the scaled proxy's; transfer_bound: min(1, sqrt(surface_ratio)), the
   // factor on every mode's pressure that keeps the proxy from radiating from more area than the object has.
   double surface_ratio = 1, transfer_bound = 1;
   std::vector<double> radiated_power_w;   // of the rendered modes: far-field power per unit q^2 (time-averaged)

@@ -16,6 +16,7 @@
 #include "synth/render_scene.hpp"
 #include "tests/synth/bank_paths.hpp"
 #include "tests/unit/make_material.hpp"
+#include "tests/unit/test_meshes.hpp"
 
 using namespace clatter;
 
@@ -422,4 +423,26 @@ TEST(ModalSynth, AFlatPieceVoicedByTheSphereRadiatesLessThanItReceives) {
   // The peak scales with the bound, give or take what the added damping does to the modes' sum.
   EXPECT_LT(peak_on, 1.05 * expected_bound * peak_off);
   EXPECT_GT(peak_on, 0.8 * expected_bound * peak_off);
+}
+
+TEST(ModalSynth, AnObjectGivenByAMeshIsBoundedByTheMeshsArea) {
+  // A 20 x 16 x 2 mm glass tile given by its mesh, voiced by the sphere entry at 8 kHz: the bound
+  // takes the tile's own area 2 (ab + bc + ca), not its equivalent ellipsoid's.
+  const double a = 0.02, b = 0.016, c = 0.002;
+  io::Scene scene = ellipsoid_scene(a / 2, b / 2, c / 2);
+  io::SceneObject& o = scene.objects[0];
+  o.volume_m3 = a * b * c;
+  o.mass_kg = 2600 * o.volume_m3;
+  o.inertia_kg_m2 = {{{o.mass_kg / 12 * (b * b + c * c), 0, 0}, {0, o.mass_kg / 12 * (a * a + c * c), 0}, {0, 0, o.mass_kg / 12 * (a * a + b * b)}}};
+  o.base_frequency_hz = 8000;
+  o.base_frequency_from = "scene";
+  o.mesh = std::make_shared<const io::TriangleMesh>(test::box({a, b, c}, 2));
+  const model::ModalBank bank = sphere_bank();
+  synth::ModalSource modal({bank}, {"bank"});
+  render(modal, scene);
+  const synth::ModalVoice& v = modal.voice(0);
+  const double area_proxy = 4 * kPi * std::pow(v.gamma * bank.entries[0].axes_m[0], 2), area_box = 2 * (a * b + b * c + c * a);
+  std::printf("modal: a 20 x 16 x 2 mm tile by its mesh: area ratio %.5g (the box's %.5g)\n", v.surface_ratio, area_box / area_proxy);
+  EXPECT_NEAR(v.surface_ratio, area_box / area_proxy, 1e-12 * area_box / area_proxy);
+  EXPECT_NEAR(v.transfer_bound, std::sqrt(area_box / area_proxy), 1e-9);
 }
