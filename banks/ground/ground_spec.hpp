@@ -27,7 +27,7 @@ struct GroundSpec {
   std::vector<double> eta;                     // ascending, log-spaced over [eta_min, eta_max]
   double c0_m_s = 0, rho0_kg_m3 = 0;
   double samples_per_eta = 8;                  // dt_hat = eta / samples_per_eta
-  double ds = 0;                               // the volume series' step: eta_min / 8 (docs/ground.md)
+  double ds = 0;                               // the volume series' step: eta_min / 16 (docs/ground.md)
   kernels::ground::VolumeSettings volume;      // the Rayleigh integral's quadrature (the kernel's defaults)
 };
 
