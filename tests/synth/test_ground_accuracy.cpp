@@ -176,6 +176,7 @@ TEST(GroundAccuracy, ElevationAndEtaSweepWithinHalfAPercent) {
 
 // A sustained contact (resting, sliding) slower than the bank's largest eta is skipped and counted;
 // one whose eta rounds an ulp above eta_max is on the grid and sounds (the grid lookup's tolerance).
+// And an impact heard only after the output's end is counted (the summary names every skip).
 TEST(GroundAccuracy, SustainedContactAtEtaMaxSoundsAndASlowerOneIsCounted) {
   model::GroundBank bank;
   model::GroundMaterial m;
@@ -221,4 +222,8 @@ TEST(GroundAccuracy, SustainedContactAtEtaMaxSoundsAndASlowerOneIsCounted) {
   EXPECT_EQ(edge.eta_above_grid, 0u);
   EXPECT_EQ(peak_slower, 0.0);
   EXPECT_EQ(after.sustained_too_slow, 1u);
+  // An impact whose sound starts after the output ends is skipped and counted, not dropped in silence.
+  im.sustained = false, im.tau_s = tau, im.t_s = 1.0;
+  source.add(im, scene.listeners_m, kRate, slower);
+  EXPECT_EQ(source.stats().outside_output, 1u);
 }
