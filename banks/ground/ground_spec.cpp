@@ -114,8 +114,8 @@ const io::Schema& ground_schema() {
            "listener elevations above the ground, ascending [deg]", {0.0, 90.0, true}},
           {"ground.eta_min", 1e-2,
            "smallest regularization width eta = epsilon / distance (4 epsilon = c_s t_c); phi is sampled at "
-           "eta_min / 16, so the grid's cost grows as 1/eta_min (0.01: about 90 core-minutes, twice the 45 measured at "
-           "eta_min / 8); clatter-synth clamps a "
+           "eta_min / 16, so the grid's cost grows as 1/eta_min (0.01: 45 core-minutes measured at eta_min / 8; the "
+           "demo grid takes 1.3 times as long at eta_min / 16); clatter-synth clamps a "
            "smaller eta, inaudibly while the pulse t_c / 4 is no longer than a sample (docs/ground.md)",
            {0.0, 1.0, true}},
           {"ground.eta_max", 0.5, "largest eta of the grid", {0.0, 1.0, true}},
