@@ -32,7 +32,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The built-in demo config (eta_min 0.02: phi at ds = 0.0025; eta 0.02 .. 0.5, 11 values, 0.1
+// The built-in demo config (eta_min 0.02: phi at ds = 0.00125; eta 0.02 .. 0.5, 11 values, 0.1
 // among them), concrete only, at one elevation.
 jobs::GroundSpec demo_spec(double elevation_deg) {
   io::Config config(jobs::ground_schema());
