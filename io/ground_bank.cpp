@@ -23,8 +23,12 @@ using model::GroundSeries;
 void write_series(File& f, const std::string& g, const std::vector<GroundSeries>& series) {
   const std::size_t n = series.size();
   std::vector<std::int64_t> offset(n), length(n);
-  std::vector<double> start(n), dt(n), pi;
+  std::vector<double> start(n), dt(n), pi, tail;
   for (std::size_t k = 0; k < n; ++k) {
+    if (series[k].tail.size() != model::kGroundTailTerms)
+      throw std::invalid_argument(fmt::format("ground bank: series {} has {} tail coefficients, not {}", k, series[k].tail.size(),
+                                              model::kGroundTailTerms));
+    tail.insert(tail.end(), series[k].tail.begin(), series[k].tail.end());
     offset[k] = static_cast<std::int64_t>(pi.size());
     length[k] = static_cast<std::int64_t>(series[k].pi.size());
     start[k] = series[k].t_hat_start;
@@ -36,10 +40,11 @@ void write_series(File& f, const std::string& g, const std::vector<GroundSeries>
   write_dataset<double>(f, g + "/t_hat_start", start, {n}, "1", true);
   write_dataset<double>(f, g + "/dt_hat", dt, {n}, "1", true);
   write_dataset<double>(f, g + "/pi", pi, {pi.size()}, "1", true);
+  write_dataset<double>(f, g + "/tail", tail, {n, model::kGroundTailTerms}, "1", true);
 }
 
 // The n series under `g`, every one checked: contiguous offsets covering `pi` exactly, at least two
-// samples (a pressure needs a difference), positive dt_hat, finite values.
+// samples (a pressure needs a difference), positive dt_hat, finite values and tail coefficients.
 std::vector<GroundSeries> read_series(const File& f, const std::string& g, std::size_t n) {
   const auto count = static_cast<long long>(n);
   const auto offset = read_dataset<std::int64_t>(f, g + "/series_offset", {count}, "1");
@@ -47,6 +52,7 @@ std::vector<GroundSeries> read_series(const File& f, const std::string& g, std::
   const auto start = read_dataset<double>(f, g + "/t_hat_start", {count}, "1");
   const auto dt = read_dataset<double>(f, g + "/dt_hat", {count}, "1");
   const auto pi = read_dataset<double>(f, g + "/pi", {-1}, "1");
+  const auto tail = read_dataset<double>(f, g + "/tail", {count, static_cast<long long>(model::kGroundTailTerms)}, "1");
   auto bad = [&](const std::string& name, std::size_t k, const std::string& what) {
     return InputError(fmt::format("{}: dataset '{}/{}': [{}] {}", f.path(), g, name, k, what));
   };
@@ -65,6 +71,10 @@ std::vector<GroundSeries> read_series(const File& f, const std::string& g, std::
     out[k].t_hat_start = start[k];
     out[k].dt_hat = dt[k];
     out[k].pi.assign(pi.begin() + offset[k], pi.begin() + next);
+    const auto tail_k = tail.begin() + static_cast<std::ptrdiff_t>(k * model::kGroundTailTerms);
+    out[k].tail.assign(tail_k, tail_k + static_cast<std::ptrdiff_t>(model::kGroundTailTerms));
+    for (std::size_t j = 0; j < model::kGroundTailTerms; ++j)
+      if (!std::isfinite(out[k].tail[j])) throw bad("tail", k, fmt::format("[{}] = {}: must be finite", j, out[k].tail[j]));
   }
   if (next != static_cast<std::int64_t>(pi.size()))
     throw InputError(fmt::format("{}: dataset '{}/pi': {} samples, the series hold {}", f.path(), g, pi.size(), next));

@@ -15,7 +15,7 @@
 namespace clatter::io {
 
 inline constexpr const char* kGroundBankFormat = "clatter-ground-bank";
-inline constexpr int kGroundBankFormatVersion = 1;
+inline constexpr int kGroundBankFormatVersion = 2;  // 2: the series' tails (docs/bank-format.md)
 
 // Writes atomically (temporary + rename); every dataset shuffled, deflated and Fletcher-32
 // checksummed; provenance as the other banks (n_ranks: how many ranks built it, in

@@ -20,11 +20,18 @@
 
 namespace clatter::model {
 
+// The tail's number of coefficients (m = 2 .. kGroundTailTerms + 1), in a bank file and in memory.
+inline constexpr std::size_t kGroundTailTerms = 9;
+
 // Pi(t_hat) for one (elevation, eta), sampled at t_hat_start + k dt_hat, k = 0 .. pi.size() - 1.
-// Before the first sample Pi is 0 (to the bank's precision); after the last it stays constant.
+// Before the first sample Pi is 0 (to the bank's precision). After the last it follows its tail,
+//   Pi(t_hat) = sum_m tail[m - 2] (2 Re (t_hat + i eta)^-m - Re (t_hat + 2 i eta)^-m),  m = 2, 3, ...
+// (kernels::ground::tail_antiderivative; tail[0] = (1 - nu) / (2 pi): the static field's share,
+// Pi ~ tail[0] / t_hat^2); a series without tail coefficients stays constant after its last sample.
 struct GroundSeries {
   double t_hat_start = 0, dt_hat = 0;
   std::vector<double> pi;
+  std::vector<double> tail;
 };
 
 // One ground of the bank: the material (name, moduli, density, source; the bank stores no damping

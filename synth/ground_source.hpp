@@ -4,7 +4,8 @@
 // problem, regularized over the Hertz contact), and its radiation reaches each listener as
 //   p(t) = A dPi/dt_hat,   t_hat = c_s (t - t_impact) / D,   A = rho0 c_s^3 J / (mu D^3),
 // with Pi(t_hat; elevation, eta) from the bank (model/ground_bank.hpp), interpolated bilinearly in
-// (elevation, log eta) and averaged over each output sample exactly, as a difference of Pi.
+// (elevation, log eta), cubically between a series' samples and continued by its tail, and averaged
+// over each output sample exactly, as a difference of Pi.
 #include <string>
 #include <vector>
 
@@ -25,6 +26,8 @@ struct GroundStats {
   // quasi-static load radiates less than the slowest series, so they are skipped, not clamped
   // (clamping would sound a slow load as a click of its whole impulse).
   std::size_t sustained_too_slow = 0;
+  std::size_t outside_output = 0;  // sound entirely outside the output's span (an impact past its end)
+  std::size_t no_series = 0;       // the four neighbouring series of the grid are all empty
 };
 
 // The ground as the source uses it: the bank's material (the half-space) and the bank's air.

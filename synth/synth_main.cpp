@@ -32,17 +32,17 @@ struct Options {
   bool normalize = false, stems = false;
 };
 
-// The ground source's counts: impacts rendered and the clamps of eta and elevation (docs/synth.md).
+// The ground source's counts: impacts rendered, the clamps of eta and elevation, and every skip (docs/synth.md).
 void print_ground_summary(const synth::GroundSource& ground, std::size_t listeners) {
   const synth::GroundStats& g = ground.stats();
   const model::GroundMaterial& m = *ground.medium().material;
   std::printf("clatter-synth: ground: %zu impacts on '%s' rendered at %zu listener(s) (%zu pulling away from the ground, "
               "skipped); eta raised to one sample %zu, clamped to the bank's [%.3g, %.3g] %zu below and %zu above; "
-              "elevation clamped to [%.3g, %.3g] rad %zu; sustained contacts slower than eta_max, skipped %zu (counts per "
-              "impact and listener)\n",
+              "elevation clamped to [%.3g, %.3g] rad %zu; sustained contacts slower than eta_max, skipped %zu; sound "
+              "outside the output, skipped %zu; no series at the grid point, skipped %zu (counts per impact and listener)\n",
               g.impacts, m.name.c_str(), listeners, g.skipped_upward, g.eta_below_sample, m.eta.front(), m.eta.back(),
               g.eta_below_grid, g.eta_above_grid, m.elevation_rad.front(), m.elevation_rad.back(), g.elevation_outside,
-              g.sustained_too_slow);
+              g.sustained_too_slow, g.outside_output, g.no_series);
 }
 
 // Peak and RMS of each source over all listeners, and the modal source's counts.

@@ -62,7 +62,9 @@ foreach(case
     "gap|dataset '/materials/steel/series_offset': [1]|the series are not contiguous"
     "speed|attribute 'shear_speed_m_s' of '/materials/soil'|the moduli give"
     "poisson|attribute 'poisson' of '/materials/soil' = 0.5: must be in (0, 0.5)"
-    "no_air|'/air' has no attribute 'c0_m_s'")
+    "no_air|'/air' has no attribute 'c0_m_s'"
+    "nan_tail|dataset '/materials/steel/tail': [2] [3] = nan: must be finite"
+    "version1|format 'clatter-ground-bank' version 1, this build reads version 2")
   string(REPLACE "|" ";" parts "${case}")
   list(POP_FRONT parts file)
   clatter_error_test(bad_ground_bank_${file} 0 "${file}.h5;${parts}" info ${bad_ground_banks}/${file}.h5)

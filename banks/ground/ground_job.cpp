@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/stage_log.hpp"
+#include "banks/ground/ground_series.hpp"
 #include "io/ground_bank.hpp"
 #include "io/sweep_files.hpp"
 #include "kernels/ground/lamb.hpp"
@@ -43,28 +44,21 @@ void check_finite(const model::GroundSeries& s, double eta) {
 }  // namespace
 
 std::vector<model::GroundSeries> build_ground_row(MPI_Comm group, const GroundSpec& spec, const GroundTask& task) {
-  const auto& m = spec.materials.at(task.material);
-  const double theta = spec.elevation_rad.at(task.elevation);
-  const GroundWindow w = ground_window(spec, task.material, task.elevation);
-  const kernels::ground::LambSurface surface(m.poisson);
   kernels::ground::VolumeSeries volume;
   {
     Stage stage("volume");
-    volume = or_fail("the volume series", [&] {
-      return kernels::ground::step_volume_series(surface, w.mach, theta, w.s_end, spec.ds, spec.volume);
-    });
+    volume = or_fail("the volume series", [&] { return ground_volume(spec, task.material, task.elevation); });
   }
   for (std::size_t k = 0; k < volume.phi.size(); ++k)
     if (!std::isfinite(volume.phi[k])) throw TaskFailure(fmt::format("the volume series: phi[{}] is {}", k, volume.phi[k]));
+  for (std::size_t k = 0; k < volume.tail.g.size(); ++k)
+    if (!std::isfinite(volume.tail.g[k])) throw TaskFailure(fmt::format("the volume series' tail: g[{}] is {}", k, volume.tail.g[k]));
+  const GroundWindow w = ground_window(spec, task.material, task.elevation);
   std::vector<model::GroundSeries> row;
   Stage stage("pressure");
   for (double eta : spec.eta) {
     mpi::poll_interrupt(group, fmt::format("the pressure at eta = {}", eta));
-    auto p = or_fail(fmt::format("the pressure at eta = {}", eta), [&] {
-      return kernels::ground::pressure_antiderivative(volume, eta, w.t_hat_start(eta), eta / spec.samples_per_eta,
-                                                      w.t_hat_end(eta));
-    });
-    model::GroundSeries s{p.t_hat_start, p.dt_hat, std::move(p.pi)};
+    model::GroundSeries s = or_fail(fmt::format("the pressure at eta = {}", eta), [&] { return ground_series(spec, w, volume, eta); });
     check_finite(s, eta);
     if (s.pi.size() < 2) throw TaskFailure(fmt::format("eta = {}: {} samples of Pi; the window holds none", eta, s.pi.size()));
     row.push_back(std::move(s));

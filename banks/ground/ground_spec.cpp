@@ -16,9 +16,11 @@
 namespace clatter::jobs {
 namespace {
 
-// The volume series' step as a fraction of the smallest eta: docs/ground.md's interpolation study
-// (pressure_antiderivative takes phi linear between samples; eta / 8 keeps that error under 1e-4).
-constexpr double kStepsPerEtaMin = 8;
+// The volume series' step as a fraction of the smallest eta. pressure_antiderivative takes phi
+// linear between samples, an error second order in ds / eta and largest where the leaky waves make
+// phi least smooth: at 30 degrees over concrete, eta 0.02, the rendered pressure was 1.84 % off at
+// eta / 8 and 0.27 % at eta / 16 (docs/ground.md "The rendered sound against an independent route").
+constexpr double kStepsPerEtaMin = 16;
 // How far the stored window reaches beyond the volume series at either end, in eta (ground_spec.hpp).
 constexpr double kLeadEtas = 20;
 // Time after the last front (the direct sound or the Rayleigh wave) the volume series covers.
@@ -112,7 +114,8 @@ const io::Schema& ground_schema() {
            "listener elevations above the ground, ascending [deg]", {0.0, 90.0, true}},
           {"ground.eta_min", 1e-2,
            "smallest regularization width eta = epsilon / distance (4 epsilon = c_s t_c); phi is sampled at "
-           "eta_min / 8, so the grid's cost grows as 1/eta_min (0.01: 45 core-minutes measured); clatter-synth clamps a "
+           "eta_min / 16, so the grid's cost grows as 1/eta_min (0.01: 45 core-minutes measured at eta_min / 8; the "
+           "demo grid takes 1.3 times as long at eta_min / 16); clatter-synth clamps a "
            "smaller eta, inaudibly while the pulse t_c / 4 is no longer than a sample (docs/ground.md)",
            {0.0, 1.0, true}},
           {"ground.eta_max", 0.5, "largest eta of the grid", {0.0, 1.0, true}},

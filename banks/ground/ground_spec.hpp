@@ -27,7 +27,7 @@ struct GroundSpec {
   std::vector<double> eta;                     // ascending, log-spaced over [eta_min, eta_max]
   double c0_m_s = 0, rho0_kg_m3 = 0;
   double samples_per_eta = 8;                  // dt_hat = eta / samples_per_eta
-  double ds = 0;                               // the volume series' step: eta_min / 8 (docs/ground.md)
+  double ds = 0;                               // the volume series' step: eta_min / 16 (docs/ground.md)
   kernels::ground::VolumeSettings volume;      // the Rayleigh integral's quadrature (the kernel's defaults)
 };
 
@@ -49,11 +49,11 @@ std::vector<GroundTask> ground_tasks(const GroundSpec& spec);
 // The time windows of one (material, elevation) (Lamb's problem has no length scale: they depend
 // on the distance only through t_hat): the volume series runs from first_arrival to s_end =
 // max(M, x_R) + 1.5, M = c_s / c0, x_R the Rayleigh front: the last front (the direct sound or
-// the Rayleigh wave) and 1.5 units of t_hat for its pressure to settle. Pi is stored on
-// [first_arrival - 20 eta, s_end + 20 eta]: the smoothed delta spreads every front over a few
-// eta and its tails fall as (eta / t)^4 (its 1/t^2 terms cancel), so 20 eta either side leaves
-// Pi constant outside the window to the bank's precision (about 1e-5 of its swing), for the
-// widest eta too. (The window must grow with eta: ending at s_end - 20 eta, as first planned,
+// the Rayleigh wave) and 1.5 units of t_hat past it; phi continues by its tail after it
+// (kernels/ground/ground_response.hpp). Pi is stored on [first_arrival - 20 eta, s_end + 20 eta]:
+// the smoothed delta spreads every front over a few eta and its tails fall as (eta / t)^4 (its
+// 1/t^2 terms cancel), so 20 eta before the first arrival Pi is 0 to about 2e-5 of its swing, and
+// 20 eta past s_end it is the tail's closed form, which the series' tail coefficients continue. (The window must grow with eta: ending at s_end - 20 eta, as first planned,
 // would cut the whole pulse off for eta above about 0.07.)
 struct GroundWindow {
   double mach = 0;           // M = c_s / c0

@@ -3,7 +3,9 @@
 #include "kernels/fem/tet_quadrature.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -237,36 +239,118 @@ double step_volume(const LambSurface& g, double mach, double elevation_rad, doub
   return sum / kPi;
 }
 
+namespace {
+
+// phi's tail (ground_response.hpp): g[0 .. kTailTerms - 1] from phi's last sample, the slope of its
+// last segment (so phi's slope has no jump where the tail takes over: a jump is a smoothed delta in
+// Pi, a click of 1.3 % of the signal in L2 when the series was continued linearly) and step_volume
+// at seven points, Chebyshev-spaced in u = s_join / s over [1/16, 1). Gaussian elimination with
+// partial pivoting: the system is 9 x 9 in powers of u in [1/16, 1].
+VolumeTail fit_tail(const LambSurface& g, double mach, double elevation_rad, const VolumeSeries& v, const VolumeSettings& set) {
+  constexpr int n = kTailTerms;
+  VolumeTail tail;
+  tail.log_coefficient = g.static_value();
+  const std::size_t last = v.phi.size() - 1;
+  tail.s_join = v.s_start + static_cast<double>(last) * v.ds;
+  const double s_join = tail.s_join, s_before = s_join - v.ds, c = tail.log_coefficient;
+  std::vector<std::array<double, n + 1>> a(n);
+  auto row = [&](int r, double u, double value) {
+    for (int j = 0; j < n; ++j) a[static_cast<std::size_t>(r)][static_cast<std::size_t>(j)] = std::pow(u, j);
+    a[static_cast<std::size_t>(r)][n] = value;
+  };
+  row(0, 1.0, v.phi[last] - c * std::log(s_join));
+  for (int j = 0; j < n; ++j) a[1][static_cast<std::size_t>(j)] = 1 - std::pow(s_join / s_before, j);
+  a[1][n] = (v.phi[last] - v.phi[last - 1]) - c * std::log(s_join / s_before);
+  for (int k = 0; k < n - 2; ++k) {
+    const double u = 1.0 / 16 + (15.0 / 16) * (1 - std::cos(kPi * k / (n - 2))) / 2, s = s_join / u;
+    row(k + 2, u, step_volume(g, mach, elevation_rad, s, set) - c * std::log(s));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t pivot = i;
+    for (std::size_t r = i + 1; r < n; ++r)
+      if (std::abs(a[r][i]) > std::abs(a[pivot][i])) pivot = r;
+    std::swap(a[i], a[pivot]);
+    for (std::size_t r = i + 1; r < n; ++r) {
+      const double f = a[r][i] / a[i][i];
+      for (std::size_t col = i; col <= n; ++col) a[r][col] -= f * a[i][col];
+    }
+  }
+  tail.g.assign(n, 0.0);
+  for (std::size_t i = n; i-- > 0;) {
+    double sum = a[i][n];
+    for (std::size_t col = i + 1; col < n; ++col) sum -= a[i][col] * tail.g[col];
+    tail.g[i] = sum / a[i][i];
+  }
+  return tail;
+}
+
+}  // namespace
+
+double VolumeTail::phi(double s) const {
+  const double u = s_join / s;
+  double sum = 0;
+  for (std::size_t j = g.size(); j-- > 0;) sum = sum * u + g[j];
+  return log_coefficient * std::log(s) + sum;
+}
+
+std::vector<double> VolumeTail::pi_tail() const {
+  std::vector<double> out(g.size(), 0.0);
+  if (g.empty()) return out;
+  out[0] = log_coefficient;
+  for (std::size_t j = 1; j < g.size(); ++j) {
+    const double jd = static_cast<double>(j);
+    out[j] = -g[j] * std::pow(s_join, jd) * jd * (jd + 1);
+  }
+  return out;
+}
+
+double tail_antiderivative(const std::vector<double>& coefficients, double t_hat, double eta) {
+  // Horner in w = 1/z: sum_m c[m - 2] w^m = w^2 sum_k c[k] w^k.
+  auto sum = [&](std::complex<double> z) {
+    const std::complex<double> w = 1.0 / z;
+    std::complex<double> acc = 0;
+    for (std::size_t k = coefficients.size(); k-- > 0;) acc = acc * w + coefficients[k];
+    return (acc * w * w).real();
+  };
+  if (coefficients.empty()) return 0;
+  return 2 * sum({t_hat, eta}) - sum({t_hat, 2 * eta});
+}
+
 VolumeSeries step_volume_series(const LambSurface& g, double mach, double elevation_rad, double s_end, double ds,
                                 const VolumeSettings& set) {
   VolumeSeries out;
   out.s_start = first_arrival(g, mach, elevation_rad);
-  if (!(ds > 0) || !(s_end > out.s_start))
+  if (!(ds > 0) || !(s_end > out.s_start + 2 * ds))
     throw std::invalid_argument("step_volume_series: needs ds > 0 and s_end after the first arrival (" + std::to_string(out.s_start) + ")");
   out.ds = ds;
   const auto n = static_cast<std::size_t>(std::floor((s_end - out.s_start) / ds)) + 1;
   out.phi.resize(n);
   for (std::size_t k = 0; k < n; ++k) out.phi[k] = k == 0 ? 0.0 : step_volume(g, mach, elevation_rad, out.s_start + static_cast<double>(k) * ds, set);
+  out.tail = fit_tail(g, mach, elevation_rad, out, set);
   return out;
 }
 
 PressureSeries pressure_antiderivative(const VolumeSeries& v, double eta, double t_start, double dt, double t_end) {
-  if (!(eta > 0) || !(dt > 0) || !(t_end > t_start) || v.phi.size() < 3 || !(v.ds > 0))
-    throw std::invalid_argument("pressure_antiderivative: needs eta > 0, dt > 0, t_end > t_start and a sampled volume");
-  const std::size_t n = v.phi.size();
-  // phi'' of the piecewise-linear phi: slope jumps at the samples (phi = 0 before the first; the
-  // last slope continues).
+  if (!(eta > 0) || !(dt > 0) || !(t_end > t_start) || v.phi.size() < 3 || !(v.ds > 0) || v.tail.g.empty())
+    throw std::invalid_argument("pressure_antiderivative: needs eta > 0, dt > 0, t_end > t_start and a sampled volume with its tail");
+  // f_eta = 2 P_eta - P_2eta decays like eta^3 / x^4: past 400 eta a sample's weight is below
+  // 1e-9 of its peak.
+  const double reach = 400 * eta;
+  // phi on one grid: the samples, then the tail out to where the last Pi sample stops seeing it.
+  std::vector<double> phi = v.phi;
+  const double s_last = t_end + reach + 2 * v.ds;
+  for (std::size_t k = phi.size(); v.s_start + static_cast<double>(k - 1) * v.ds < s_last; ++k)
+    phi.push_back(v.tail.phi(v.s_start + static_cast<double>(k) * v.ds));
+  const std::size_t n = phi.size();
+  // phi'' of the piecewise-linear phi: slope jumps at the samples (phi = 0 before the first).
   std::vector<double> kappa(n, 0.0);
   double slope_before = 0;
   for (std::size_t i = 0; i + 1 < n; ++i) {
-    const double slope = (v.phi[i + 1] - v.phi[i]) / v.ds;
+    const double slope = (phi[i + 1] - phi[i]) / v.ds;
     kappa[i] = slope - slope_before;
     slope_before = slope;
   }
-  // f_eta = 2 P_eta - P_2eta decays like eta^3 / x^4: past 400 eta a sample's weight is below
-  // 1e-9 of its peak.
   auto f = [eta](double x) { return (2 * eta / (x * x + eta * eta) - 2 * eta / (x * x + 4 * eta * eta)) / kPi; };
-  const double reach = 400 * eta;
   PressureSeries out;
   out.t_hat_start = t_start;
   out.dt_hat = dt;

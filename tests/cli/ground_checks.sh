@@ -55,7 +55,7 @@ echo "(m) merged from (a)'s tasks: $(sum m.h5)"
 
 "$bank" info a.h5 > info.log 2>&1 || fail "info: exit $?"
 cat info.log
-grep -q "ground bank (format clatter-ground-bank v1), 2 materials" info.log || fail "info: $(head -1 info.log)"
+grep -q "ground bank (format clatter-ground-bank v2), 2 materials" info.log || fail "info: $(head -1 info.log)"
 grep -q "elevations \[deg\]: 45 90; 3 etas in \[0.05, 0.2\]" info.log || fail "info does not show the grid"
 grep -q "4 of 4 tasks (material x elevation) in the bank, 0 failed" info.log || fail "info: no sweep line"
 

@@ -45,4 +45,10 @@ with edit("poisson") as f:
     f[soil].attrs["poisson"] = 0.5
 with edit("no_air") as f:
     del f["air"].attrs["c0_m_s"]
+with edit("nan_tail") as f:
+    f[steel + "/tail"][2, 3] = np.nan
+with edit("version1") as f:  # a bank of version 1: no tails, Pi held after each series
+    f.attrs["format_version"] = np.int32(1)
+    for m in (steel, soil):
+        del f[m + "/tail"]
 print("bad ground banks in", out, ":", " ".join(sorted(os.listdir(out))))

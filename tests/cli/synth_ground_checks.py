@@ -33,8 +33,8 @@ with h5py.File(ground_bank, "r") as f:
     g = f["materials"][name]
     ground = {k: float(g.attrs[k]) for k in ("youngs_pa", "poisson", "rho_kg_m3", "shear_speed_m_s")}
     elevations, etas = g["elevation_rad"][()], g["eta"][()]
-    series = [(start, dt, g["pi"][offset:offset + length]) for offset, length, start, dt in
-              zip(g["series_offset"][()], g["series_length"][()], g["t_hat_start"][()], g["dt_hat"][()])]
+    series = [(start, dt, g["pi"][offset:offset + length], tail, etas[k % len(etas)]) for k, (offset, length, start, dt, tail) in
+              enumerate(zip(g["series_offset"][()], g["series_length"][()], g["t_hat_start"][()], g["dt_hat"][()], g["tail"][()]))]
     rho0 = float(f["air"].attrs["rho0_kg_m3"])
 print(f"ground bank {ground_bank}: materials {', '.join(names)}; using '{name}' {ground}")
 
@@ -65,13 +65,30 @@ scene = {"format": "clatter-scene", "format_version": 1,
          "duration_s": 0.2}
 
 
+def tail_pi(tail, eta, t):
+    """Pi past a series: sum_m tail[m - 2] (2 Re (t + i eta)^-m - Re (t + 2 i eta)^-m) (model/ground_bank.hpp)."""
+    m = np.arange(2, 2 + len(tail))[:, None]
+    t = np.asarray(t, dtype=float)[None, :]
+    return np.sum(tail[:, None] * (2 * np.real((t + 1j * eta) ** -m) - np.real((t + 2j * eta) ** -m)), axis=0)
+
+
 def pi_of(k, t_hat):
-    """Series k at t_hat: linear between samples, 0 before the first, the last value after."""
-    start, dt, pi = series[k]
+    """Series k at t_hat: 0 before the first sample, cubic (4-point Lagrange) between samples,
+    linear in the first and last interval, the tail after the last up to 4 t_hat_last, then held."""
+    start, dt, pi, tail, eta = series[k]
     x = (t_hat - start) / dt
     i = np.clip(np.floor(x).astype(int), 0, len(pi) - 2)
-    v = pi[i] + (x - i) * (pi[i + 1] - pi[i])
-    return np.where(x < 0, 0.0, np.where(x >= len(pi) - 1, pi[-1], v))
+    u = x - i
+    v = pi[i] + u * (pi[i + 1] - pi[i])
+    inner = (x >= 1) & (x < len(pi) - 2)
+    j = np.clip(i, 1, len(pi) - 3)
+    a, b, c, d = pi[j - 1], pi[j], pi[j + 1], pi[j + 2]
+    cubic = (-u * (u - 1) * (u - 2) / 6 * a + (u + 1) * (u - 1) * (u - 2) / 2 * b - (u + 1) * u * (u - 2) / 2 * c
+             + (u + 1) * u * (u - 1) / 6 * d)
+    v = np.where(inner, cubic, v)
+    t_last = start + (len(pi) - 1) * dt
+    after = tail_pi(tail, eta, np.minimum(np.maximum(t_hat, t_last), 4 * t_last))
+    return np.where(x < 0, 0.0, np.where(x >= len(pi) - 1, after, v))
 
 
 def bracket(grid, x):

@@ -23,7 +23,7 @@ model::GroundBank template_bank() {
   m.source = "fuzz template";
   m.elevation_rad = {0.1, 1.5707963267948966};
   m.eta = {0.05, 0.1};
-  for (int i = 0; i < 4; ++i) m.series.push_back({5.0 + i, 0.01 * (i + 1), {0.0, -0.1 * i, 0.2, 0.3}});
+  for (int i = 0; i < 4; ++i) m.series.push_back({5.0 + i, 0.01 * (i + 1), {0.0, -0.1 * i, 0.2, 0.3}, std::vector<double>(model::kGroundTailTerms, 0.01 * i)});
   bank.materials.push_back(m);
   return bank;
 }
