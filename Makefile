@@ -6,7 +6,8 @@
 #                             (out/demo/debris.wav, its stems and spectrogram); then the two simulated
 #                             scenes of scenes/*.toml (clatter-sim: a rock slide and a shattering
 #                             plate) and the plate rendered with every source (out/demo/plate.wav)
-#   make test                 every test (ctest), in build/$(PRESET), then `make fuzz`
+#   make test                 every test (ctest) but those labelled extended, in build/$(PRESET), then `make fuzz`
+#   make test-extended        the extended tests (minutes each: the ground sound's elevation and eta sweep)
 #   make fuzz                 the libFuzzer harnesses of the readers, 30 s each (preset fuzz, clang-14)
 #   make bench                Google Benchmark suite, JSON in out/bench/
 #   make PRESET=asan test     the same with ASan+UBSan (presets: release debug asan ci; fuzz: make fuzz)
@@ -23,7 +24,7 @@ PYTHON = $(shell sed -n 's/^CLATTER_PYTHON:FILEPATH=//p' $(BUILD)/CMakeCache.txt
 
 FUZZ_BUILD := build/fuzz
 
-.PHONY: all deps build demo test fuzz bench clean
+.PHONY: all deps build demo test test-extended fuzz bench clean
 all: build
 
 deps:
@@ -52,8 +53,11 @@ demo: build
 	$(PYTHON) analysis/spectrogram.py out/demo/plate.wav
 
 test: build
-	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300
+	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300 -LE extended
 	@$(MAKE) fuzz
+
+test-extended: build
+	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) -L extended
 
 $(FUZZ_BUILD)/CMakeCache.txt: | deps
 	cmake --preset fuzz
