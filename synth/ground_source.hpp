@@ -65,6 +65,7 @@ class GroundSource : public SoundSource {
   GroundMedium medium_;
   std::vector<double> log_eta_;  // of the chosen material's grid
   std::vector<double> pi_;       // scratch: the interpolated Pi at the sample edges of one impact
+  std::vector<double> tail_nodes_;  // scratch: one series' tail at its interpolation nodes
   GroundStats stats_;
 };
 

@@ -304,17 +304,29 @@ std::vector<double> VolumeTail::pi_tail() const {
   return out;
 }
 
-double tail_antiderivative(const std::vector<double>& coefficients, double t_hat, double eta) {
-  // Horner in w = 1/z: sum_m c[m - 2] w^m = w^2 sum_k c[k] w^k.
-  auto sum = [&](std::complex<double> z) {
-    const std::complex<double> w = 1.0 / z;
-    std::complex<double> acc = 0;
-    for (std::size_t k = coefficients.size(); k-- > 0;) acc = acc * w + coefficients[k];
-    return (acc * w * w).real();
-  };
-  if (coefficients.empty()) return 0;
-  return 2 * sum({t_hat, eta}) - sum({t_hat, 2 * eta});
+namespace {
+
+// Re sum_k c[k] w^(k+2), w = 1 / (t + i e) = (t - i e) / (t^2 + e^2): Horner in real arithmetic
+// (std::complex's division calls __divdc3 and keeps the loop from vectorizing).
+inline double tail_sum(const double* c, std::size_t n, double t, double e) {
+  const double inv = 1 / (t * t + e * e), w_re = t * inv, w_im = -e * inv;
+  double re = 0, im = 0;
+  for (std::size_t k = n; k-- > 0;) {
+    const double r = re * w_re - im * w_im + c[k], i = re * w_im + im * w_re;
+    re = r, im = i;
+  }
+  const double w2_re = w_re * w_re - w_im * w_im, w2_im = 2 * w_re * w_im;
+  return re * w2_re - im * w2_im;
 }
+
+}  // namespace
+
+double tail_antiderivative(const std::vector<double>& coefficients, double t_hat, double eta) {
+  if (coefficients.empty()) return 0;
+  return 2 * tail_sum(coefficients.data(), coefficients.size(), t_hat, eta) -
+         tail_sum(coefficients.data(), coefficients.size(), t_hat, 2 * eta);
+}
+
 
 VolumeSeries step_volume_series(const LambSurface& g, double mach, double elevation_rad, double s_end, double ds,
                                 const VolumeSettings& set) {

@@ -87,7 +87,7 @@ def pi_of(k, t_hat):
              + (u + 1) * u * (u - 1) / 6 * d)
     v = np.where(inner, cubic, v)
     t_last = start + (len(pi) - 1) * dt
-    after = tail_pi(tail, eta, np.minimum(np.maximum(t_hat, t_last), 4 * t_last))
+    after = tail_pi(tail, eta, np.minimum(np.maximum(t_hat, t_last), 3 * t_last))  # kTailSpan of synth/ground_source.cpp
     return np.where(x < 0, 0.0, np.where(x >= len(pi) - 1, after, v))
 
 
