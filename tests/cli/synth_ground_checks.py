@@ -73,8 +73,11 @@ def tail_pi(tail, eta, t):
 
 
 def pi_of(k, t_hat):
-    """Series k at t_hat: 0 before the first sample, cubic (4-point Lagrange) between samples,
-    linear in the first and last interval, the tail after the last up to 4 t_hat_last, then held."""
+    """Series k at t_hat (the edges t_hat0 + n dt of one impact's samples): 0 before the first
+    sample, cubic (4-point Lagrange) between samples, linear in the first and last interval; after
+    the last, the tail up to 2 t_hat_last (kTailSpan of synth/ground_source.cpp), interpolated by
+    the same cubic between nodes t_a / 16 apart (kTailNodes; t_a the first edge past the series),
+    then held at its value at 2 t_hat_last."""
     start, dt, pi, tail, eta = series[k]
     x = (t_hat - start) / dt
     i = np.clip(np.floor(x).astype(int), 0, len(pi) - 2)
@@ -87,7 +90,20 @@ def pi_of(k, t_hat):
              + (u + 1) * u * (u - 1) / 6 * d)
     v = np.where(inner, cubic, v)
     t_last = start + (len(pi) - 1) * dt
-    after = tail_pi(tail, eta, np.minimum(np.maximum(t_hat, t_last), 3 * t_last))  # kTailSpan of synth/ground_source.cpp
+    t_cut = 2 * t_last
+    after = np.full_like(t_hat, tail_pi(tail, eta, [t_cut])[0])
+    past = np.nonzero(x >= len(pi) - 1)[0]
+    if len(past):
+        t_a = t_hat[past[0]]
+        delta = max(t_hat[1] - t_hat[0], t_a / 16)
+        y = (t_hat - t_a) / delta + 2
+        nodes = tail_pi(tail, eta, t_a + (np.arange(int(y.max()) + 4) - 2) * delta)
+        iy = np.clip(np.floor(y).astype(int), 1, len(nodes) - 3)
+        w = y - iy
+        a, b, c, d = nodes[iy - 1], nodes[iy], nodes[iy + 1], nodes[iy + 2]
+        node_cubic = (-w * (w - 1) * (w - 2) / 6 * a + (w + 1) * (w - 1) * (w - 2) / 2 * b - (w + 1) * w * (w - 2) / 2 * c
+                      + (w + 1) * w * (w - 1) / 6 * d)
+        after = np.where(t_hat < t_cut, node_cubic, after)
     return np.where(x < 0, 0.0, np.where(x >= len(pi) - 1, after, v))
 
 
