@@ -31,6 +31,7 @@ struct SceneObject {
   // The mesh itself, once synth::load_scene has read it (objects of one file share it), in its own
   // frame: contact takes the local curvature from it. Null for objects given by numbers.
   std::shared_ptr<const TriangleMesh> mesh;
+  double surface_area_m2 = 0;  // the mesh's, once synth::load_scene has read it (0: no mesh)
   // The centre of mass in the rest-pose coordinates (the mesh's; 0 for objects given by numbers),
   // about which the James-lab format's rest-pose contact points are taken.
   std::array<double, 3> rest_centre_m{};

@@ -1,5 +1,7 @@
 #include "kernels/mass_properties.hpp"
 
+#include <cmath>
+
 namespace clatter::kernels {
 
 MeshMassProperties mesh_mass_properties(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
@@ -9,7 +11,7 @@ MeshMassProperties mesh_mass_properties(const std::vector<Vec3>& vertices, const
     for (std::size_t i = 0; i < 3; ++i) ref[i] += v[i] / static_cast<double>(vertices.size());
   // For the tetrahedron (0, p1, p2, p3) with signed volume V and S = p1 + p2 + p3:
   //   integral of x_i = V S_i / 4,   integral of x_i x_j = V (sum_k p_k,i p_k,j + S_i S_j) / 20.
-  double volume = 0;
+  double volume = 0, area = 0;
   Vec3 first{};
   Mat3 second{};
   for (const auto& t : triangles) {
@@ -20,6 +22,8 @@ MeshMassProperties mesh_mass_properties(const std::vector<Vec3>& vertices, const
                       p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) / 6.0;
     const Vec3 s{p[0][0] + p[1][0] + p[2][0], p[0][1] + p[1][1] + p[2][1], p[0][2] + p[1][2] + p[2][2]};
     volume += v;
+    const Vec3 n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+    area += 0.5 * std::sqrt(dot(n, n));
     for (std::size_t i = 0; i < 3; ++i) {
       first[i] += v * s[i] / 4.0;
       for (std::size_t j = 0; j < 3; ++j)
@@ -28,6 +32,7 @@ MeshMassProperties mesh_mass_properties(const std::vector<Vec3>& vertices, const
   }
   MeshMassProperties out;
   out.volume_m3 = volume;
+  out.surface_area_m2 = area;
   Vec3 c{};  // centroid relative to ref
   for (std::size_t i = 0; i < 3; ++i) {
     c[i] = volume != 0 ? first[i] / volume : 0;

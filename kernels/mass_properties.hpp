@@ -17,6 +17,7 @@ struct MeshMassProperties {
   // Inertia tensor about the centroid of the solid at unit density [m^5]; times the density it is
   // kg m^2.
   Mat3 inertia_per_density_m5{};
+  double surface_area_m2 = 0;  // the sum of the triangles' areas
 };
 
 // Triangles index into vertices; the mesh must be closed and consistently oriented for the result

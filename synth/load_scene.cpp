@@ -57,6 +57,7 @@ void set_mass_properties(io::SceneObject& o, const kernels::MeshMassProperties& 
   o.volume_m3 = solid.volume_m3;
   o.mass_kg = density * solid.volume_m3;
   o.rest_centre_m = solid.centroid_m;
+  o.surface_area_m2 = solid.surface_area_m2;
   for (std::size_t r = 0; r < 3; ++r)
     for (std::size_t c = 0; c < 3; ++c) o.inertia_kg_m2[r][c] = density * solid.inertia_per_density_m5[r][c];
 }

@@ -10,7 +10,8 @@ namespace clatter::synth {
 // impulses_path empty: scene_path is a native scene. Otherwise scene_path is the side file of a
 // James-lab impulse file (docs/scene-format.md). An object given by a mesh gets the mass, volume,
 // inertia (about the centre of mass, in the mesh's axes) and rest_centre_m of the uniform solid it
-// bounds, and keeps the mesh (SceneObject::mesh) for contact; with base_frequencies, also its lowest free-vibration frequency (unless the scene gives
+// bounds, and keeps the mesh (SceneObject::mesh, and its area) for contact and the modal energy
+// rule; with base_frequencies, also its lowest free-vibration frequency (unless the scene gives
 // it), from a FEM of that solid in its material (kernels/fem/lowest_mode.hpp), once per mesh file
 // and material. InputError names the file and field or line.
 io::Scene load_scene(const std::string& scene_path, const std::string& impulses_path = "", bool base_frequencies = false);

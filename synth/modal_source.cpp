@@ -108,7 +108,7 @@ void ModalSource::finish(std::vector<std::vector<double>>& out) {
     stats_.radiated_j += energy_[i].radiated_j;
     if (energy_[i].injected_j > 0 && energy_[i].radiated_j / energy_[i].injected_j > stats_.worst_ratio) {
       stats_.worst_ratio = energy_[i].radiated_j / energy_[i].injected_j;
-      stats_.worst_object = object_ids_[i];
+      stats_.worst_object = energy_[i].object_id;
     }
   }
 }

@@ -26,8 +26,8 @@ struct ModalOptions {
   double max_frequency_hz = 20000;   // and above this (or above 0.45 of the output rate)
   double poisson_tolerance = 0.015;  // a bank serves materials within this of its nu (docs/materials.md)
   double relative_floor = 1e-6;      // a mode stops 120 dB below the loudest mode of the render
-  // The energy rule of docs/synth.md "Energy account": a scaled proxy carries at most the object's
-  // mass, and each mode decays by its radiation too. Off only to measure what the rule changes.
+  // The energy rule of docs/synth.md "Energy account": a scaled proxy radiates from at most the
+  // object's area, and each mode decays by its radiation too. Off only to measure what it changes.
   bool energy_rule = true;
 };
 
@@ -43,8 +43,9 @@ struct ModalVoice {
   std::vector<double> omega_rad_s, damping_ratio;  // of those, scaled and in the object's material
   std::vector<const kernels::transfer::Multipole*> transfer;  // of those, the bank's (unscaled)
   // The energy rule (docs/synth.md "Energy account"). surface_ratio: the object's surface area (its
-  // mesh's, else its equivalent ellipsoid's) over the scaled proxy's; transfer_bound: min(1, sqrt(surface_ratio)), the
-  // factor on every mode's pressure that keeps the proxy from radiating from more area than the object has.
+  // mesh's, else its equivalent ellipsoid's) over the scaled proxy's; transfer_bound:
+  // min(1, sqrt(surface_ratio)), the factor on every mode's pressure that keeps the proxy from
+  // radiating from more area than the object has.
   double surface_ratio = 1, transfer_bound = 1;
   std::vector<double> radiated_power_w;   // of the rendered modes: far-field power per unit q^2 (time-averaged)
   std::vector<double> radiation_damping;  // P / omega^3, included in damping_ratio (with the rule)
@@ -76,6 +77,7 @@ struct ModalStats {
 
 // One object's energy account over a render.
 struct ObjectEnergy {
+  int object_id = 0;
   double injected_j = 0, radiated_j = 0;
 };
 
@@ -122,7 +124,6 @@ class ModalSource : public SoundSource {
   std::vector<kernels::modal::ResonatorBank> listeners_;     // one resonator bank per listener
   std::vector<std::vector<std::size_t>> resonator_;          // [object][listener * modes + k]
   std::vector<ObjectEnergy> energy_;  // [object]
-  std::vector<int> object_ids_;       // [object]: the scene's ids, for the summary
   ModalStats stats_;
 };
 

@@ -36,24 +36,6 @@ struct ModalSource::EntryIndex {
   Tree tree;
 };
 
-namespace {
-
-// The object's surface: its mesh's where the scene gives one, else its equivalent ellipsoid's.
-double surface_area_m2(const io::SceneObject& o, const kernels::ProxyFit& fit) {
-  if (!o.mesh) return kernels::ellipsoid_surface_area_m2(fit.a_m, fit.b_m, fit.c_m);
-  double area = 0;
-  const auto& x = o.mesh->vertices_m;
-  for (const auto& t : o.mesh->triangles) {
-    const auto &p = x[t[0]], &q = x[t[1]], &r = x[t[2]];
-    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-    area += 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
-                            std::pow(u[0] * v[1] - u[1] * v[0], 2));
-  }
-  return area;
-}
-
-}  // namespace
-
 ModalSource::ModalSource(const std::vector<std::string>& paths, ModalOptions options)
     : ModalSource([&] {
         std::vector<model::ModalBank> banks;
@@ -131,7 +113,9 @@ ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& mo
   // <v_n^2>). Equi-frequency scaling makes the proxy of a flat or thin object far larger than it,
   // and that area radiates what the object's cannot: the bound scales the pressure by the square
   // root of the area ratio, never above 1, so covered objects (ratio ~1) keep their sound.
-  v.surface_ratio = surface_area_m2(o, model.proxy) /
+  const kernels::ProxyFit& fit = model.proxy;  // the object's area: its mesh's, else its equivalent ellipsoid's
+  const double area_m2 = o.surface_area_m2 > 0 ? o.surface_area_m2 : kernels::ellipsoid_surface_area_m2(fit.a_m, fit.b_m, fit.c_m);
+  v.surface_ratio = area_m2 /
                     (v.gamma * v.gamma * kernels::ellipsoid_surface_area_m2(e.axes_m[0], e.axes_m[1], e.axes_m[2]));
   if (options_.energy_rule && v.surface_ratio < 1) v.transfer_bound = std::sqrt(v.surface_ratio);
   const auto& transfer = prepare_entry(v.bank, v.entry);
@@ -197,9 +181,8 @@ void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& 
     (v.base_frequency_from == "scene" ? stats_.from_scene : v.base_frequency_from == "mesh" ? stats_.from_mesh : stats_.from_proxy)++;
   }
   listeners_.assign(scene.listeners_m.size(), kernels::modal::ResonatorBank(rate_hz));
-  energy_.assign(models.size(), {});
-  object_ids_.clear();
-  for (const ObjectModel& m : models) object_ids_.push_back(m.object->id);
+  energy_.clear();
+  for (const ObjectModel& m : models) energy_.push_back({m.object->id});
 }
 
 std::vector<std::string> ModalSource::coverage(const std::vector<ObjectModel>& models) const {

@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "io/modal_bank.hpp"
+#include "kernels/mass_properties.hpp"
 #include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
 #include "tests/synth/bank_paths.hpp"
@@ -436,7 +437,8 @@ TEST(ModalSynth, AnObjectGivenByAMeshIsBoundedByTheMeshsArea) {
   o.inertia_kg_m2 = {{{o.mass_kg / 12 * (b * b + c * c), 0, 0}, {0, o.mass_kg / 12 * (a * a + c * c), 0}, {0, 0, o.mass_kg / 12 * (a * a + b * b)}}};
   o.base_frequency_hz = 8000;
   o.base_frequency_from = "scene";
-  o.mesh = std::make_shared<const io::TriangleMesh>(test::box({a, b, c}, 2));
+  const io::TriangleMesh tile = test::box({a, b, c}, 2);
+  o.surface_area_m2 = kernels::mesh_mass_properties(tile.vertices_m, tile.triangles).surface_area_m2;  // as load_scene sets it
   const model::ModalBank bank = sphere_bank();
   synth::ModalSource modal({bank}, {"bank"});
   render(modal, scene);

@@ -17,14 +17,16 @@ using kernels::ContactFeature;
 
 namespace {
 
-// A rule whose clamps never bite: the fit alone.
-kernels::MeshContactRule unclamped() {
+kernels::MeshContactRule rule_of(double rounding_radius_m, double flat_radius_m, double max_offset_m) {
   kernels::MeshContactRule r;
-  r.rounding_radius_m = 1e-9;
-  r.flat_radius_m = 1e9;
-  r.max_offset_m = 1;
+  r.rounding_radius_m = rounding_radius_m;
+  r.flat_radius_m = flat_radius_m;
+  r.max_offset_m = max_offset_m;
   return r;
 }
+
+// A rule whose clamps never bite: the fit alone.
+kernels::MeshContactRule unclamped() { return rule_of(1e-9, 1e9, 1); }
 
 kernels::MeshContact contact_of(const io::TriangleMesh& m, const kernels::MeshContactRule& rule) {
   return kernels::MeshContact(m.vertices_m, m.triangles, rule);
@@ -90,10 +92,7 @@ TEST(MeshContact, EllipsoidPrincipalCurvatures) {
 // (the fit's neighbourhood follows the contact face's shortest edge).
 TEST(MeshContact, CylinderSideCapAndRim) {
   const double r = 0.05, r_min = 1e-3, r_flat = 1.0;
-  kernels::MeshContactRule rule;
-  rule.rounding_radius_m = r_min;
-  rule.flat_radius_m = r_flat;
-  rule.max_offset_m = 0.05;
+  const kernels::MeshContactRule rule = rule_of(r_min, r_flat, 0.05);
   for (const auto& [segments, rings, tolerance] : {std::tuple{64, 8, 0.015}, std::tuple{128, 16, 0.002}}) {
     const auto contact = contact_of(test::cylinder(r, 0.2, segments, rings), rule);
     for (const double angle : {0.0, 0.3, 2.0}) {
@@ -116,10 +115,7 @@ TEST(MeshContact, CylinderSideCapAndRim) {
 // corner r_min, whatever the tessellation; within r_min of an edge counts as on it.
 TEST(MeshContact, BoxFaceEdgeAndCornerFollowTheRule) {
   const double side = 0.1, r_min = 1e-3, r_flat = 0.06;
-  kernels::MeshContactRule rule;
-  rule.rounding_radius_m = r_min;
-  rule.flat_radius_m = r_flat;
-  rule.max_offset_m = 0.05;
+  const kernels::MeshContactRule rule = rule_of(r_min, r_flat, 0.05);
   for (const int n : {1, 4, 8}) {  // 8 x 8: 81 vertices a face, enough for the quartic fit
     const auto contact = contact_of(test::box({side, side, side}, n), rule);
     struct Case {
@@ -160,10 +156,7 @@ TEST(MeshContact, RuleOfACube) {
 }
 
 TEST(MeshContact, BadMeshesAndFarPointsThrow) {
-  kernels::MeshContactRule rule;
-  rule.rounding_radius_m = 1e-3;
-  rule.flat_radius_m = 0.06;
-  rule.max_offset_m = 0.02;
+  kernels::MeshContactRule rule = rule_of(1e-3, 0.06, 0.02);
   auto cube = test::box({0.1, 0.1, 0.1});
   const auto contact = contact_of(cube, rule);
   EXPECT_THROW(contact.at({0.05, 0.05, -0.03}), std::invalid_argument);  // 3 cm below a face
