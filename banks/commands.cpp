@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -33,9 +35,16 @@ using KindTools = std::vector<std::pair<const BankKind*, FileTool>>;
 // `info` or `probe` on a bank: the tool of the file's kind, after refusing the options of the others.
 std::string run_tool(const KindTools& tools, const std::string& path, const char* command) {
   const BankKind& kind = kind_of_file(path);
+  // An option may be declared by one kind and shared by others (`--entry`): it is refused only when
+  // the file's kind does not list it.
+  auto listed = [&](const CLI::Option* o) {
+    for (const auto& [k, tool] : tools)
+      if (k == &kind && std::find(tool.options.begin(), tool.options.end(), o) != tool.options.end()) return true;
+    return false;
+  };
   for (const auto& [k, tool] : tools)
     for (const CLI::Option* o : tool.options)
-      if (k != &kind && o->count() > 0)
+      if (o->count() > 0 && !listed(o))
         throw InputError(fmt::format("{}: only for a {} bank; {} is not one", o->get_name(), k->name(), path));
   for (const auto& [k, tool] : tools)
     if (k == &kind && tool.run) return tool.run(path);

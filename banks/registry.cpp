@@ -6,6 +6,7 @@
 
 #include "banks/ground/ground_kind.hpp"
 #include "banks/modal/modal_kind.hpp"
+#include "banks/modal/object_kind.hpp"
 #include "banks/pan/pan_kind.hpp"
 #include "core/errors.hpp"
 #include "io/h5.hpp"
@@ -23,7 +24,7 @@ std::string known(const char* (BankKind::*field)() const) {
 
 std::span<const BankKind* const> bank_kinds() {
   // One line per kind.
-  static const std::array<const BankKind*, 3> kinds = {&pan_kind(), &modal_kind(), &ground_kind()};
+  static const std::array<const BankKind*, 4> kinds = {&pan_kind(), &modal_kind(), &object_kind(), &ground_kind()};
   return kinds;
 }
 

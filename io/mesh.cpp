@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "io/content_hash.hpp"
 #include "io/text_number.hpp"
 
 namespace clatter::io {
@@ -69,6 +71,19 @@ TriangleMesh read_obj(const std::string& path) {
     if (!edges.count({e.second, e.first}))
       throw InputError(fmt::format("{}:{}: edge {}-{} has no face on its other side: the mesh is not closed", path, n, e.first + 1, e.second + 1));
   return mesh;
+}
+
+std::string mesh_hash(const TriangleMesh& mesh) {
+  std::string bytes;
+  bytes.reserve(mesh.vertices_m.size() * sizeof(double) * 3 + mesh.triangles.size() * sizeof(std::int32_t) * 3);
+  for (const auto& v : mesh.vertices_m) bytes.append(reinterpret_cast<const char*>(v.data()), sizeof(double) * 3);
+  bytes.append("|");  // vertices end here: a vertex list cannot pass for a triangle list
+  for (const auto& t : mesh.triangles)
+    for (const int i : t) {
+      const auto index = static_cast<std::int32_t>(i);
+      bytes.append(reinterpret_cast<const char*>(&index), sizeof index);
+    }
+  return hash_hex(text_hash(bytes));
 }
 
 }  // namespace clatter::io

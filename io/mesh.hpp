@@ -18,4 +18,10 @@ struct TriangleMesh {
 // consistently oriented). Self-intersection is not checked. InputError names the file and line.
 TriangleMesh read_obj(const std::string& path);
 
+// The mesh's content hash, 16 hex digits: FNV-1a over its vertices' coordinates (the doubles'
+// bytes) and its triangles' indices, in order. Two files with the same geometry (comments,
+// number formatting, normals and texture coordinates aside) hash alike; a moved, scaled or
+// renumbered mesh does not. The object bank keys its entries by it (model/object_bank.hpp).
+std::string mesh_hash(const TriangleMesh& mesh);
+
 }  // namespace clatter::io

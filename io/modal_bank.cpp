@@ -162,11 +162,11 @@ void check_entry(const File& f, const std::string& g, const ModalEntry& e) {
 
 // What the bank's settings promise of every entry: residuals within the limit, the count check
 // passed, exactly the 6 rigid motions below the interval.
-void check_against_settings(const File& f, const std::string& g, const ModalEntry& e, const model::ModalBankHeader& h) {
+void check_against_settings(const File& f, const std::string& g, const ModalEntry& e, const model::ModalSolveSettings& solve) {
   for (std::size_t i = 0; i < e.modes(); ++i)
-    if (e.relative_residuals[i] > h.solve.residual_limit)
+    if (e.relative_residuals[i] > solve.residual_limit)
       throw InputError(fmt::format("{}: {}: mode {} has relative residual {} above the bank's residual_limit {}",
-                                   f.path(), g, i, e.relative_residuals[i], h.solve.residual_limit));
+                                   f.path(), g, i, e.relative_residuals[i], solve.residual_limit));
   if (e.solve.found_in_interval != e.solve.below_hi - e.solve.below_lo || e.solve.below_lo != 6 ||
       static_cast<std::int64_t>(e.modes()) > e.solve.found_in_interval)
     throw InputError(fmt::format("{}: {}/solve: found_in_interval {}, below_lo {}, below_hi {} for {} modes: the "
@@ -176,9 +176,45 @@ void check_against_settings(const File& f, const std::string& g, const ModalEntr
 
 }  // namespace
 
-void write_modal_entry(File& file, const std::string& group, const ModalEntry& entry) {
+void write_modal_entry(File& file, const std::string& group, const ModalEntry& entry, bool with_cost) {
   write_entry_content(file, group, entry);
-  write_cost(file, group + "/cost", entry.cost);
+  if (with_cost) write_cost(file, group + "/cost", entry.cost);
+}
+
+void write_modal_entry_cost(File& file, const std::string& group, const model::ModalEntryCost& cost) {
+  write_cost(file, group, cost);
+}
+
+model::ModalEntryCost read_modal_entry_cost(const File& file, const std::string& group) { return read_cost(file, group); }
+
+void write_material(File& file, const std::string& g, const model::Material& m) {
+  if (!m.damping) throw std::invalid_argument("modal model: material '" + m.name + "' has no Rayleigh damping");
+  create_group(file, g);
+  write_attribute(file, g, "name", m.name);
+  write_attribute(file, g, "source", m.source);
+  write_attribute<double>(file, g, "rho_kg_m3", m.rho_kg_m3);
+  write_attribute<double>(file, g, "youngs_pa", m.youngs_pa);
+  write_attribute<double>(file, g, "poisson", m.poisson);
+  write_attribute<double>(file, g, "rayleigh_alpha_1_s", m.damping->alpha_1_s);
+  write_attribute<double>(file, g, "rayleigh_beta_s", m.damping->beta_s);
+}
+
+model::Material read_material(const File& file, const std::string& g) {
+  model::Material m;
+  m.name = read_string_attribute(file, g, "name");
+  m.source = read_string_attribute(file, g, "source");
+  m.rho_kg_m3 = read_attribute<double>(file, g, "rho_kg_m3");
+  m.youngs_pa = read_attribute<double>(file, g, "youngs_pa");
+  m.poisson = read_attribute<double>(file, g, "poisson");
+  m.damping = model::RayleighDamping{read_attribute<double>(file, g, "rayleigh_alpha_1_s"),
+                                     read_attribute<double>(file, g, "rayleigh_beta_s")};
+  if (const std::string bad = model::check_material(m); !bad.empty())
+    throw InputError(fmt::format("{}: {}: {}: not an elastic material", file.path(), g, bad));
+  return m;
+}
+
+void check_modal_entry_solve(const File& f, const std::string& g, const ModalEntry& e, const model::ModalSolveSettings& s) {
+  check_against_settings(f, g, e, s);
 }
 
 ModalEntry read_modal_entry(const File& f, const std::string& g) {
@@ -209,15 +245,7 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   const auto& h = bank.header;
   auto file = File::create(path);
   write_header(file, kModalBankFormat, kModalBankFormatVersion);
-  create_group(file, "/material");
-  write_attribute(file, "/material", "name", h.material.name);
-  write_attribute(file, "/material", "source", h.material.source);
-  write_attribute<double>(file, "/material", "rho_kg_m3", h.material.rho_kg_m3);
-  write_attribute<double>(file, "/material", "youngs_pa", h.material.youngs_pa);
-  write_attribute<double>(file, "/material", "poisson", h.material.poisson);
-  if (!h.material.damping) throw std::invalid_argument("modal bank: material '" + h.material.name + "' has no Rayleigh damping");
-  write_attribute<double>(file, "/material", "rayleigh_alpha_1_s", h.material.damping->alpha_1_s);
-  write_attribute<double>(file, "/material", "rayleigh_beta_s", h.material.damping->beta_s);
+  write_material(file, "/material", h.material);
   create_group(file, "/settings");
   write_attribute<double>(file, "/settings", "f_max_multiple", h.solve.f_max_multiple);
   write_attribute<double>(file, "/settings", "elements_per_wavelength", h.elements_per_wavelength);
@@ -249,16 +277,7 @@ model::ModalBank read_modal_bank(const std::string& path) {
   check_header(file, kModalBankFormat, kModalBankFormatVersion);
   model::ModalBank bank;
   auto& h = bank.header;
-  auto& m = h.material;
-  m.name = read_string_attribute(file, "/material", "name");
-  m.source = read_string_attribute(file, "/material", "source");
-  m.rho_kg_m3 = read_attribute<double>(file, "/material", "rho_kg_m3");
-  m.youngs_pa = read_attribute<double>(file, "/material", "youngs_pa");
-  m.poisson = read_attribute<double>(file, "/material", "poisson");
-  m.damping = model::RayleighDamping{read_attribute<double>(file, "/material", "rayleigh_alpha_1_s"),
-                                     read_attribute<double>(file, "/material", "rayleigh_beta_s")};
-  if (const std::string bad = model::check_material(m); !bad.empty())
-    throw InputError(fmt::format("{}: /material: {}: not an elastic material", path, bad));
+  h.material = read_material(file, "/material");
   // The solve's settings as stored; max_iterations and nev_per_shift are not (they change the work,
   // not the result) and read back as 0.
   h.solve.f_max_multiple = read_attribute<double>(file, "/settings", "f_max_multiple");
@@ -279,7 +298,7 @@ model::ModalBank read_modal_bank(const std::string& path) {
     if (!std::equal(axes.begin() + static_cast<long>(3 * i), axes.begin() + static_cast<long>(3 * i + 3),
                     bank.entries.back().axes_m.begin()))
       throw InputError(fmt::format("{}: /entries/{:04d}/axes_m differs from row {} of /entries/axes_m", path, i, i));
-    check_against_settings(file, fmt::format("/entries/{:04d}", i), bank.entries.back(), h);
+    check_against_settings(file, fmt::format("/entries/{:04d}", i), bank.entries.back(), h.solve);
     const std::string cost = fmt::format("/provenance/run/entries/{:04d}", i);
     if (exists(file, cost)) bank.entries.back().cost = read_cost(file, cost);
   }

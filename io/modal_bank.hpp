@@ -23,8 +23,21 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
 // frequencies, checksums); InputError naming the file and what is wrong.
 model::ModalBank read_modal_bank(const std::string& path);
 
-// One entry under `group` (a task file's payload, or a bank's /entries/eNNN), cost included.
-void write_modal_entry(File& file, const std::string& group, const model::ModalEntry& entry);
+// One entry under `group` (a task file's payload, or a bank's /entries/eNNN), its cost at
+// group/cost unless with_cost is false (a bank keeps costs in provenance, out of its content
+// hash); read_modal_entry reads the cost when it is there.
+void write_modal_entry(File& file, const std::string& group, const model::ModalEntry& entry, bool with_cost = true);
 model::ModalEntry read_modal_entry(const File& file, const std::string& group);
+void write_modal_entry_cost(File& file, const std::string& group, const model::ModalEntryCost& cost);
+model::ModalEntryCost read_modal_entry_cost(const File& file, const std::string& group);
+// What the solve settings promise of an entry: residuals within the limit, the count check
+// passed, exactly the 6 rigid motions below the interval; InputError naming file and group.
+void check_modal_entry_solve(const File& file, const std::string& group, const model::ModalEntry& entry,
+                             const model::ModalSolveSettings& solve);
+
+// A material with its Rayleigh damping as the attributes of `group` (name, source, rho_kg_m3,
+// youngs_pa, poisson, rayleigh_alpha_1_s, rayleigh_beta_s); read back checked.
+void write_material(File& file, const std::string& group, const model::Material& material);
+model::Material read_material(const File& file, const std::string& group);
 
 }  // namespace clatter::io

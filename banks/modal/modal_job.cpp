@@ -41,30 +41,46 @@ kernels::fem::EllipsoidMesh mesh_or_fail(const ModalSpec& spec, const std::array
   }
 }
 
+}  // namespace
+
 model::ModalMeshStats mesh_stats(const kernels::fem::MeshQuality& q) {
   return {q.elements,         q.nodes,           q.dofs,         q.edge_length_m, q.max_radius_edge,
           q.mean_radius_edge, q.min_dihedral_deg, q.max_dihedral_deg, q.min_jacobian_ratio};
 }
 
-// The surface nodes (in ascending mesh order) and the faces renumbered onto them.
-void extract_surface(const kernels::fem::EllipsoidMesh& mesh, model::ModalEntry& entry, std::vector<int>& nodes) {
+void store_modes(MPI_Comm group, const ModeSet& modes, const kernels::fem::Tet10Mesh& mesh,
+                 const std::vector<kernels::fem::BoundaryFace>& boundary, const model::Material& material,
+                 model::ModalEntry& entry) {
+  Stage stage("surface");
+  // The surface nodes (in ascending mesh order) and the faces renumbered onto them.
   std::map<int, std::int32_t> index;
-  for (const auto& face : mesh.boundary)
+  for (const auto& face : boundary)
     for (int v : face) index.emplace(v, 0);
+  std::vector<int> surface;
   for (auto& [node, at] : index) {
-    at = static_cast<std::int32_t>(nodes.size());
-    nodes.push_back(node);
-    const auto p = mesh.mesh.nodes_m.col(node);
+    at = static_cast<std::int32_t>(surface.size());
+    surface.push_back(node);
+    const auto p = mesh.nodes_m.col(node);
     entry.surface_nodes_m.push_back({p(0), p(1), p(2)});
   }
-  for (const auto& face : mesh.boundary) {
+  for (const auto& face : boundary) {
     std::array<std::int32_t, 6> f{};
     for (int k = 0; k < 6; ++k) f[static_cast<std::size_t>(k)] = index.at(face[static_cast<std::size_t>(k)]);
     entry.surface_faces.push_back(f);
   }
+  const bool root = mpi::rank(group) == 0;
+  for (std::size_t i = 0; i < modes.lambdas.size(); ++i) {
+    const std::vector<double> u = modes.vectors[i].gather_to_root();
+    if (!root) continue;
+    for (int node : surface)
+      for (int c = 0; c < 3; ++c) entry.shapes.push_back(u[static_cast<std::size_t>(3 * node + c)]);
+    const double omega = std::sqrt(modes.lambdas[i]);
+    entry.frequencies_hz.push_back(omega / (2 * std::numbers::pi));
+    entry.damping_ratios.push_back(material.damping_ratio(omega));
+    entry.cluster.push_back(modes.cluster[i]);
+    entry.relative_residuals.push_back(modes.relative_residuals[i]);
+  }
 }
-
-}  // namespace
 
 kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m) {
   std::string reasons;
@@ -135,26 +151,12 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
   entry.mesh = mesh_stats(mesh.quality);
   entry.solve = modes.record;
   entry.solve.first_mode_estimate_hz = f1_estimate_hz;
-  std::vector<int> surface;
-  extract_surface(mesh, entry, surface);
-  const bool root = mpi::rank(group) == 0;
-  {
-    Stage stage("surface");
-    for (std::size_t i = 0; i < modes.lambdas.size(); ++i) {
-      const std::vector<double> u = modes.vectors[i].gather_to_root();
-      if (!root) continue;
-      for (int node : surface)
-        for (int c = 0; c < 3; ++c) entry.shapes.push_back(u[static_cast<std::size_t>(3 * node + c)]);
-      const double omega = std::sqrt(modes.lambdas[i]);
-      entry.frequencies_hz.push_back(omega / (2 * std::numbers::pi));
-      entry.damping_ratios.push_back(material.damping_ratio(omega));
-      entry.cluster.push_back(modes.cluster[i]);
-      entry.relative_residuals.push_back(modes.relative_residuals[i]);
-    }
-  }
-  compute_modal_transfer(group, spec.header.transfer, entry);
+  store_modes(group, modes, mesh.mesh, mesh.boundary, material, entry);
+  const auto& transfer = spec.header.transfer;
+  compute_modal_transfer(group, [&transfer](const model::ModalEntry& e, std::size_t mode) { return mode_transfer(e, mode, transfer); },
+                         entry);
   entry.cost.total_s = since(t_start);
-  if (!root) return {};
+  if (mpi::rank(group) != 0) return {};
   return entry;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "banks/modal/modal_fem.hpp"
+#include "banks/modal/modal_solve.hpp"
 #include "banks/modal/modal_spec.hpp"
 #include "sweep/sweep.hpp"
 #include "model/modal_bank.hpp"
@@ -49,6 +50,15 @@ struct FirstModeEstimate {
   double f1_hz() const { return frequency_hz(lambda1); }
 };
 FirstModeEstimate estimate_first_mode(MPI_Comm comm, const ModalSpec& spec, const std::array<double, 3>& axes);
+
+// What the modal and object kinds share after the solve.
+model::ModalMeshStats mesh_stats(const kernels::fem::MeshQuality& quality);
+// On the group's rank 0, into `entry`: the surface nodes of `boundary` (in ascending mesh order)
+// and its faces renumbered onto them, every mode's frequency, damping in `material`, multiplet and
+// residual, and its shape at the surface nodes. Collective on `group` (the vectors are gathered).
+void store_modes(MPI_Comm group, const ModeSet& modes, const kernels::fem::Tet10Mesh& mesh,
+                 const std::vector<kernels::fem::BoundaryFace>& boundary, const model::Material& material,
+                 model::ModalEntry& entry);
 
 // The edge length that resolves the shear wavelength at f_max: c_s / f_max / elements_per_wavelength.
 double modal_edge_length_m(const ModalSpec& spec, double first_frequency_hz);

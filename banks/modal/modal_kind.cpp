@@ -62,14 +62,14 @@ class ModalKind final : public BankKind {
 
   FileTool info(CLI::App& app) const override {
     auto entry = std::make_shared<std::optional<std::size_t>>();
-    CLI::Option* option = app.add_option("--entry", *entry, "modal bank: list this entry's modes (index, frequency, "
+    CLI::Option* option = app.add_option("--entry", *entry, "modal or object bank: list this entry's modes (index, frequency, "
                                                             "damping, multiplet, multiplicity, residual) as CSV");
     return {{option}, [entry](const std::string& path) { return modal_bank_info(path, *entry); }};
   }
 
   FileTool probe(CLI::App& app, const ProbePoint& point) const override {
     auto entry = std::make_shared<std::optional<std::size_t>>();
-    CLI::Option* option = app.add_option("--entry", *entry, "modal: the entry whose modes to evaluate");
+    CLI::Option* option = app.add_option("--entry", *entry, "modal or object bank: the entry whose modes to evaluate");
     return {{option}, [entry, &point](const std::string& path) {
               if (!entry->has_value()) throw InputError("probe " + path + ": a modal bank needs --entry N");
               return modal_probe_csv(path, **entry, point.point_m, point.scale);

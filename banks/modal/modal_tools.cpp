@@ -12,9 +12,7 @@
 #include "kernels/transfer/multipole.hpp"
 
 namespace clatter::jobs {
-namespace {
 
-// "1 x 40, 2 x 6, 5 x 1": how many multiplets of each size.
 std::string multiplicities(const model::ModalEntry& e) {
   std::map<int, int> count_of_size;
   for (std::size_t i = 0; i < e.modes();) {
@@ -29,9 +27,13 @@ std::string multiplicities(const model::ModalEntry& e) {
 }
 
 std::string entry_table(const model::ModalEntry& e, std::size_t index) {
-  std::string out = fmt::format("entry {}: axes ({:.6f}, {:.6f}, {:.6f}) m, {} modes\n", index, e.axes_m[0], e.axes_m[1],
-                                e.axes_m[2], e.modes());
-  out += "mode,frequency_hz,damping_ratio,multiplet,multiplicity,relative_residual,transfer_order,"
+  return fmt::format("entry {}: axes ({:.6f}, {:.6f}, {:.6f}) m, {} modes\n", index, e.axes_m[0], e.axes_m[1], e.axes_m[2],
+                     e.modes()) +
+         modes_csv(e);
+}
+
+std::string modes_csv(const model::ModalEntry& e) {
+  std::string out = "mode,frequency_hz,damping_ratio,multiplet,multiplicity,relative_residual,transfer_order,"
          "boundary_residual,normal_attempts,sources\n";
   const auto& t = e.transfer;
   for (std::size_t i = 0; i < e.modes(); ++i) {
@@ -42,8 +44,6 @@ std::string entry_table(const model::ModalEntry& e, std::size_t index) {
   }
   return out;
 }
-
-}  // namespace
 
 std::string modal_probe_csv(const std::string& path, std::size_t entry, const std::array<double, 3>& point_m,
                             double scale) {

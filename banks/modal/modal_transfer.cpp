@@ -101,7 +101,7 @@ kt::ModeTransfer mode_transfer(const model::ModalEntry& entry, std::size_t mode,
                                  u, settings);
 }
 
-void compute_modal_transfer(MPI_Comm group, const model::TransferSettings& settings, model::ModalEntry& entry) {
+void compute_modal_transfer(MPI_Comm group, const ModeTransferSolver& solve, model::ModalEntry& entry) {
   Stage stage("transfer");
   const auto t0 = std::chrono::steady_clock::now();
   share_entry(group, entry);
@@ -112,7 +112,7 @@ void compute_modal_transfer(MPI_Comm group, const model::TransferSettings& setti
   for (std::size_t round = 0; round * ranks < n; ++round) {
     mpi::poll_interrupt(group, "the next transfer round");
     const std::size_t i = round * ranks + static_cast<std::size_t>(rank);
-    if (i < n) mine.add(i, mode_transfer(entry, i, settings));
+    if (i < n) mine.add(i, solve(entry, i));
   }
   const double own_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto core_s = mpi::gather(group, own_s);

@@ -5,15 +5,21 @@
 // nothing but its own data, so the stored transfer is bit-identical for any group size.
 #include <mpi.h>
 
+#include <functional>
+
 #include "kernels/transfer/mode_transfer.hpp"
 #include "model/modal_bank.hpp"
 
 namespace clatter::jobs {
 
+// One mode of an entry, serially: what each rank runs for the modes dealt to it.
+using ModeTransferSolver = std::function<kernels::transfer::ModeTransfer(const model::ModalEntry& entry, std::size_t mode)>;
+
 // entry: complete on rank 0 of `group` (surface, shapes, frequencies), ignored elsewhere; on
-// rank 0 its `transfer` and cost.transfer_s / transfer_core_s are filled in. settings: the bank
-// header's (model::ModalBankHeader::transfer), which the kernel takes as they are.
-void compute_modal_transfer(MPI_Comm group, const model::TransferSettings& settings, model::ModalEntry& entry);
+// rank 0 its `transfer` and cost.transfer_s / transfer_core_s are filled in. `solve` is the
+// ellipsoid's mode_transfer below with the bank header's settings, or the object bank's solve for
+// an arbitrary surface.
+void compute_modal_transfer(MPI_Comm group, const ModeTransferSolver& solve, model::ModalEntry& entry);
 
 // One mode of an entry, serially (what each rank runs; tests and `probe` use it too).
 kernels::transfer::ModeTransfer mode_transfer(const model::ModalEntry& entry, std::size_t mode,
