@@ -20,10 +20,18 @@ namespace clatter::synth {
 
 std::vector<double> ModalSource::modal_forces(const Impact& im) const {
   const ModalVoice& v = voices_.at(im.model->index);
-  const model::ModalEntry& e = banks_[v.bank].entries[v.entry];
-  const Vec3 f = kernels::modal::to_modal_frame(v.frame, im.direction_body);  // R f_0 (003 section 5.2)
-  const Vec3 x = kernels::modal::contact_point(e.axes_m, {-f[0], -f[1], -f[2]});
-  const kernels::transfer::SurfacePoint at = locators_[v.bank][v.entry]->locate(Eigen::Vector3d(x[0], x[1], x[2]));
+  const model::ModalEntry& e = *v.modes_of;
+  const Prepared& prepared = prepared_.at(&e);
+  Vec3 f = im.direction_body;
+  kernels::transfer::SurfacePoint at;
+  if (v.own_model) {
+    // The object's own surface, in its body frame: the contact point itself.
+    at = prepared.mesh->locate(Eigen::Vector3d(im.contact_body_m[0], im.contact_body_m[1], im.contact_body_m[2]));
+  } else {
+    f = kernels::modal::to_modal_frame(v.frame, im.direction_body);  // R f_0 (003 section 5.2)
+    const Vec3 x = kernels::modal::contact_point(e.axes_m, {-f[0], -f[1], -f[2]});
+    at = prepared.ellipsoid->locate(Eigen::Vector3d(x[0], x[1], x[2]));
+  }
   const std::size_t per_mode = 3 * e.surface_nodes_m.size();
   std::vector<double> g;
   g.reserve(v.modes.size());
@@ -37,7 +45,7 @@ std::vector<double> ModalSource::modal_forces(const Impact& im) const {
 void ModalSource::add(const Impact& im, const std::vector<Vec3>& listeners, int rate_hz, std::vector<std::vector<double>>& out) {
   const ModalVoice& v = voices_.at(im.model->index);
   if (v.modes.empty()) return;
-  const model::ModalEntry& e = banks_[v.bank].entries[v.entry];
+  const model::ModalEntry& e = *v.modes_of;
   const std::vector<double> g = modal_forces(im);
   std::vector<std::optional<kernels::modal::HalfSineResponse>> response(v.modes.size());
   for (std::size_t k = 0; k < v.modes.size(); ++k)
@@ -51,14 +59,16 @@ void ModalSource::add(const Impact& im, const std::vector<Vec3>& listeners, int 
       account.radiated_j += 2 * v.radiated_power_w[k] * response[k]->free_square_integral();
     }
   std::vector<double> p(v.modes.size());
-  const double c_air = banks_[v.bank].header.transfer.sound_speed_m_s;
+  const double c_air =
+      (v.own_model ? object_banks_[v.bank].header.transfer : banks_[v.bank].header.transfer).sound_speed_m_s;
   const Vec3& x0 = im.pose.position_m;
   for (std::size_t l = 0; l < listeners.size(); ++l) {
-    // v -> gamma^-1 R v in the unit proxy's frame (003 section 5.2), where the multipoles live.
+    // v -> gamma^-1 R v in the unit proxy's frame (003 section 5.2), where the multipoles live; an
+    // own model's are in the body frame itself.
     const Vec3 body = rotate_inverse(im.pose.orientation_wxyz, {listeners[l][0] - x0[0], listeners[l][1] - x0[1], listeners[l][2] - x0[2]});
-    const Vec3 vp = kernels::modal::to_modal_frame(v.frame, body);
+    const Vec3 vp = v.own_model ? body : kernels::modal::to_modal_frame(v.frame, body);
     const double r_m = std::sqrt(vp[0] * vp[0] + vp[1] * vp[1] + vp[2] * vp[2]);
-    const double transfer_from_m = 2 * e.axes_m[2] * v.gamma;
+    const double transfer_from_m = v.own_model ? v.object_entry->radius_m : 2 * e.axes_m[2] * v.gamma;
     if (!(r_m > im.model->proxy.a_m))
       throw InputError(fmt::format("listener ({}, {}, {}) is {:.4g} m from object {} at t = {} s, inside its bounding sphere "
                                    "(radius {:.4g} m)",

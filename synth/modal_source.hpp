@@ -3,7 +3,10 @@
 // Algorithm 1; docs/synth.md "Modal sound"): each object is voiced by the nearest ellipsoid of the
 // bank of its material's nu class, scaled to ring at the object's base frequency; every impact
 // excites the proxy's modes at the Appendix F contact point with the Hertz half-sine, and each
-// mode radiates |p_k| of the bank's multipole at the listener.
+// mode radiates |p_k| of the bank's multipole at the listener. An object whose base frequency is
+// below the proxy threshold (003 section 5.4) rings with its own model instead when an object bank
+// holds its mesh in its material (docs/synth.md "Objects with their own models"): the same
+// rendering on the entry's own modes, unscaled, at the contact point itself.
 #include <complex>
 #include <cstdint>
 #include <limits>
@@ -14,9 +17,11 @@
 
 #include "kernels/modal/modal_proxy.hpp"
 #include "kernels/modal/resonator_bank.hpp"
+#include "kernels/transfer/mesh_locator.hpp"
 #include "kernels/transfer/multipole.hpp"
 #include "kernels/transfer/surface_interpolation.hpp"
 #include "model/modal_bank.hpp"
+#include "model/object_bank.hpp"
 #include "synth/sources.hpp"
 
 namespace clatter::synth {
@@ -29,11 +34,21 @@ struct ModalOptions {
   // The energy rule of docs/synth.md "Energy account": a scaled proxy radiates from at most the
   // object's area, and each mode decays by its radiation too. Off only to measure what it changes.
   bool energy_rule = true;
+  // omega_proxy / 2 pi of 003 section 5.4: an object whose base frequency is below it rings with its
+  // own model when an object bank holds it, and is listed in the coverage report when none does.
+  // 2000 Hz: the value three of 003 Table 2's four examples use (docs/synth.md).
+  double proxy_above_hz = 2000;
 };
 
 // How one object is voiced (fixed for the whole render).
 struct ModalVoice {
+  // The entry that voices the object: its proxy's (bank, entry of a modal bank) or, with
+  // own_model, its own (object_entry of object bank `bank`).
   std::size_t bank = 0, entry = 0;
+  const model::ModalEntry* modes_of = nullptr;
+  bool own_model = false;
+  const model::ObjectEntry* object_entry = nullptr;
+  std::string own_model_missing;    // below the threshold without an own model: why (coverage)
   kernels::modal::ModalProxyFrame frame;
   double base_frequency_hz = 0;     // omega_0 / 2 pi
   std::string base_frequency_from;  // "scene", "mesh" (FEM of the object's mesh) or "proxy"
@@ -57,6 +72,8 @@ struct ModalVoice {
 struct ModalStats {
   std::size_t objects = 0, modes = 0, skipped_high = 0, skipped_low = 0, skipped_overdamped = 0;
   std::size_t from_scene = 0, from_mesh = 0, from_proxy = 0;  // where omega_0 came from
+  std::size_t own_models = 0;        // objects voiced by their own model (an object bank's entry)
+  std::size_t own_model_missing = 0; // objects below the proxy threshold voiced by their proxy
   // Objects whose bank's last mode, scaled, falls below the top frequency (003 section 5.1: a bank
   // is all-frequency only for gamma small enough): their modes between the two are missing.
   std::size_t band_short = 0;
@@ -83,10 +100,13 @@ struct ObjectEnergy {
 
 class ModalSource : public SoundSource {
  public:
-  // Banks from files; InputError names the file (wrong kind or version, empty).
-  explicit ModalSource(const std::vector<std::string>& bank_paths, ModalOptions options = {});
+  // Banks from files (modal banks, then object banks); InputError names the file (wrong kind or
+  // version, empty). At least one of either.
+  explicit ModalSource(const std::vector<std::string>& bank_paths, ModalOptions options = {},
+                       const std::vector<std::string>& object_bank_paths = {});
   // Banks already in memory (tests, benchmarks); names stand for the files in messages.
-  ModalSource(std::vector<model::ModalBank> banks, std::vector<std::string> names, ModalOptions options = {});
+  ModalSource(std::vector<model::ModalBank> banks, std::vector<std::string> names, ModalOptions options = {},
+              std::vector<model::ObjectBank> object_banks = {}, std::vector<std::string> object_names = {});
   ~ModalSource() override;
 
   std::string name() const override { return "modal"; }
@@ -98,7 +118,8 @@ class ModalSource : public SoundSource {
   const ModalVoice& voice(std::size_t object) const { return voices_.at(object); }
   // Object id -> the distance its scaled proxy's transfer needs, for objects skipped at a listener.
   const std::map<int, double>& transfer_short_objects() const { return transfer_short_; }
-  // Objects whose shape lies outside their bank's patch (a/c below its min_ratio).
+  // Objects whose shape lies outside their bank's patch (a/c below its min_ratio), and objects
+  // below the proxy threshold without an own model.
   std::vector<std::string> coverage(const std::vector<ObjectModel>& models) const override;
   // u_k(x_c) . f / |f| of every rendered mode (per unit force), x_c the Appendix F point.
   std::vector<double> modal_forces(const Impact& impact) const;
@@ -108,17 +129,30 @@ class ModalSource : public SoundSource {
 
  private:
   struct EntryIndex;  // a kd-tree over one bank's normalized axes
+  // An entry's multipoles and the locator of its surface, built on the entry's first use.
+  struct Prepared {
+    std::vector<kernels::transfer::Multipole> multipoles;
+    std::unique_ptr<kernels::transfer::SurfaceLocator> ellipsoid;  // a proxy's: rays from the centre
+    std::unique_ptr<kernels::transfer::MeshLocator> mesh;          // an object's own: the nearest face
+  };
   ModalVoice make_voice(const io::Scene& scene, const ObjectModel& model, int rate_hz);
+  // The object bank entry of the object's mesh and material, or why there is none ("" and the entry).
+  std::pair<const model::ObjectEntry*, std::size_t> own_model_of(const io::Scene& scene, const io::SceneObject& object,
+                                                                 std::string& why_not);
+  void add_modes(const io::Scene& scene, const io::SceneObject& object, int rate_hz, double rho_air, double c_air,
+                 double power_scale, ModalVoice& v) const;
   std::size_t bank_for(const io::Scene& scene, const io::SceneObject& object) const;
-  // An entry's multipoles and surface locator, built on its first use; the multipoles.
-  const std::vector<kernels::transfer::Multipole>& prepare_entry(std::size_t bank, std::size_t entry);
+  const Prepared& prepare(const model::ModalEntry& entry, bool own_surface);
 
   ModalOptions options_;
   std::vector<model::ModalBank> banks_;
   std::vector<std::string> names_;
+  std::vector<model::ObjectBank> object_banks_;
+  std::vector<std::string> object_names_;
+  std::map<std::string, std::pair<std::size_t, std::size_t>> object_keys_;  // key -> (object bank, entry)
+  std::map<const io::TriangleMesh*, std::string> mesh_hashes_;               // of the scene's meshes
   std::vector<std::unique_ptr<EntryIndex>> indices_;
-  std::vector<std::vector<std::vector<kernels::transfer::Multipole>>> multipoles_;  // [bank][entry], built on use
-  std::vector<std::vector<std::unique_ptr<kernels::transfer::SurfaceLocator>>> locators_;  // the same
+  std::map<const model::ModalEntry*, Prepared> prepared_;
   std::vector<ModalVoice> voices_;
   std::map<int, double> transfer_short_;
   std::vector<kernels::modal::ResonatorBank> listeners_;     // one resonator bank per listener

@@ -25,7 +25,7 @@ namespace {
 
 struct Options {
   std::string scene, impulses, bank, ground_bank, out = "out.wav", format = "float";
-  std::vector<std::string> modal_banks;
+  std::vector<std::string> modal_banks, object_banks;
   synth::ModalOptions modal;
   int rate_hz = 44100;
   double max_sustained_s = synth::RenderOptions{}.max_sustained_s;
@@ -63,6 +63,9 @@ void print_summary(const std::vector<synth::SoundSource*>& sources, const std::v
               "resonators, %.3g mode-samples\n",
               m.objects, m.modes, m.skipped_high, m.skipped_low, options.min_frequency_hz, m.skipped_overdamped, m.from_scene, m.from_mesh, m.from_proxy,
               m.excitations, m.resonators.resonators, static_cast<double>(m.resonators.mode_samples));
+  std::printf("clatter-synth: modal: own models (objects below %g Hz, 003 section 5.4): %zu objects ring with their own "
+              "model from an object bank, %zu below it ring with their proxy (listed above)\n",
+              options.proxy_above_hz, m.own_models, m.own_model_missing);
   std::printf("clatter-synth: modal: energy: %.3g J into the rendered modes, %.3g J radiated (%.3g); worst object %d radiates "
               "%.3g of its modes' energy; the energy rule %s: %zu objects' transfer bounded by their surface, %zu with radiation "
               "damping > 1 %% of their material's (docs/synth.md \"Energy account\")\n",
@@ -84,14 +87,15 @@ void print_summary(const std::vector<synth::SoundSource*>& sources, const std::v
 int run(const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   if (o.rate_hz < 8000 || o.rate_hz > 384000) throw InputError(fmt::format("--rate {}: must be in [8000, 384000] Hz", o.rate_hz));
-  if (o.bank.empty() && o.modal_banks.empty() && o.ground_bank.empty())
-    throw InputError("give a PAN bank (-b), a modal bank (-m) or a ground bank (-g), or several");
-  const io::Scene scene = synth::load_scene(o.scene, o.impulses, !o.modal_banks.empty());
+  if (o.bank.empty() && o.modal_banks.empty() && o.object_banks.empty() && o.ground_bank.empty())
+    throw InputError("give a PAN bank (-b), a modal bank (-m), an object bank (-O) or a ground bank (-g), or several");
+  const bool modal_sound = !o.modal_banks.empty() || !o.object_banks.empty();
+  const io::Scene scene = synth::load_scene(o.scene, o.impulses, modal_sound);
   std::vector<std::unique_ptr<synth::SoundSource>> owned;
   synth::ModalSource* modal = nullptr;
   if (!o.bank.empty()) owned.push_back(std::make_unique<synth::PanSource>(o.bank));
-  if (!o.modal_banks.empty()) {
-    auto m = std::make_unique<synth::ModalSource>(o.modal_banks, o.modal);
+  if (modal_sound) {
+    auto m = std::make_unique<synth::ModalSource>(o.modal_banks, o.modal, o.object_banks);
     modal = m.get();
     owned.push_back(std::move(m));
   }
@@ -176,6 +180,13 @@ int main(int argc, char** argv) {
   app.add_option("-b,--bank", o.bank, "PAN bank (clatter-bank pan): acceleration noise");
   app.add_option("-m,--modal-bank", o.modal_banks, "modal bank (clatter-bank modal), repeatable: one per nu class; each "
                                                    "object rings with the bank nearest its material's nu");
+  app.add_option("-O,--object-bank", o.object_banks, "object bank (clatter-bank object), repeatable: objects whose base "
+                                                    "frequency is below --proxy-above-hz ring with their own model when one "
+                                                    "holds their mesh in their material");
+  app.add_option("--proxy-above-hz", o.modal.proxy_above_hz, "omega_proxy / 2 pi of 003 section 5.4: objects with a lower base "
+                                                             "frequency should have their own model (-O)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_option("-g,--ground-bank", o.ground_bank, "ground bank (clatter-bank ground): the sound of the ground itself at "
                                                     "object-ground impacts; its material named by the scene's ground_material");
   app.add_option("--max-mode-hz", o.modal.max_frequency_hz, "modes above this after scaling are skipped (and above 0.45 of "
