@@ -18,4 +18,9 @@ struct TriangleMesh {
 // consistently oriented). Self-intersection is not checked. InputError names the file and line.
 TriangleMesh read_obj(const std::string& path);
 
+// The mesh as OBJ text that read_obj reads back to the same numbers: "v x y z" lines printed
+// shortest round-trip, then "f a b c" lines (1-based). The bytes are a function of the values, so
+// the text can name the mesh by its hash.
+std::string obj_text(const TriangleMesh& mesh);
+
 }  // namespace clatter::io
