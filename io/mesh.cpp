@@ -86,4 +86,12 @@ std::string mesh_hash(const TriangleMesh& mesh) {
   return hash_hex(text_hash(bytes));
 }
 
+std::string obj_text(const TriangleMesh& mesh) {
+  std::string text;
+  text.reserve(48 * mesh.vertices_m.size() + 24 * mesh.triangles.size());
+  for (const auto& v : mesh.vertices_m) fmt::format_to(std::back_inserter(text), "v {} {} {}\n", v[0], v[1], v[2]);
+  for (const auto& t : mesh.triangles) fmt::format_to(std::back_inserter(text), "f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  return text;
+}
+
 }  // namespace clatter::io

@@ -24,4 +24,9 @@ TriangleMesh read_obj(const std::string& path);
 // renumbered mesh does not. The object bank keys its entries by it (model/object_bank.hpp).
 std::string mesh_hash(const TriangleMesh& mesh);
 
+// The mesh as OBJ text that read_obj reads back to the same numbers: "v x y z" lines printed
+// shortest round-trip, then "f a b c" lines (1-based). The bytes are a function of the values, so
+// the text can name the mesh by its hash.
+std::string obj_text(const TriangleMesh& mesh);
+
 }  // namespace clatter::io

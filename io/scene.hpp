@@ -29,7 +29,8 @@ struct SceneObject {
   std::string mesh_path;
   double density_kg_m3 = 0;
   // The mesh itself, once synth::load_scene has read it (objects of one file share it), in its own
-  // frame: contact takes the local curvature from it. Null for objects given by numbers.
+  // frame: contact takes the local curvature from it. Null for objects given by numbers. A writer
+  // (clatter-sim) sets it, with mesh_path empty, for write_scene to write the OBJ.
   std::shared_ptr<const TriangleMesh> mesh;
   double surface_area_m2 = 0;  // the mesh's, once synth::load_scene has read it (0: no mesh)
   // The centre of mass in the rest-pose coordinates (the mesh's; 0 for objects given by numbers),
@@ -79,12 +80,19 @@ struct Scene {
 // Reads and validates a scene (without its events, for the side file of an impulse file);
 // InputError names the file, the JSON path and the value.
 Scene read_scene(const std::string& path, bool read_events = true);
-// Writes a scene in the native JSON form that read_scene reads back (objects given by numbers,
-// not meshes), with `generator` (any JSON object text, e.g. the simulator and its settings) as an
-// extra top-level key that readers ignore. Written to a temporary file and renamed, so an existing
-// file at `path` is replaced only by a complete one. Numbers are printed shortest round-trip, so
-// the bytes are a function of the values.
+// Writes a scene in the native JSON form that read_scene reads back, with `generator` (any JSON
+// object text, e.g. the simulator and its settings) as an extra top-level key that readers ignore.
+// Objects given by numbers are written so; an object that carries its `mesh` is written as a mesh
+// object (its mass_kg and the OBJ's path, docs/scene-format.md): the OBJ goes into
+// scene_mesh_folder(path) as ID-HASH.obj (HASH: FNV-1a 64 of the OBJ text, io/content_hash.hpp).
+// Every file is written to a temporary file and renamed, meshes first, so an existing scene at
+// `path` is replaced only by a complete one with all its meshes; then the folder's ID-HASH.obj
+// files the new scene does not name are removed (nothing else there is touched). Numbers are
+// printed shortest round-trip, so the bytes are a function of the values.
 void write_scene(const Scene& scene, const std::string& path, const std::string& generator_json = "{}");
+// The folder beside a scene file that holds its objects' meshes: plate.json -> plate.meshes,
+// scene -> scene.meshes. InputError if something other than a folder is there.
+std::string scene_mesh_folder(const std::string& scene_path);
 // Appends the events of a James-lab rigid-body impulse file (one event per line, "C ..." or
 // "P ...", docs/scene-format.md) to a scene read from its side file. Rest-pose contact points are
 // taken about each object's rest_centre_m, so objects given by meshes must be resolved first.

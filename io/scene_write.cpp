@@ -5,10 +5,15 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
 
 #include "core/cleanup.hpp"
 #include "core/errors.hpp"
+#include "io/content_hash.hpp"
+#include "io/mesh.hpp"
 #include "io/scene.hpp"
 
 namespace clatter::io {
@@ -25,10 +30,14 @@ ordered_json material_json(const model::Material& m) {
   return j;
 }
 
-ordered_json object_json(const SceneObject& o) {
-  if (!o.mesh_path.empty()) throw std::logic_error("write_scene: objects must be given by numbers, not meshes");
-  ordered_json j = {{"id", o.id}, {"mass_kg", o.mass_kg}, {"volume_m3", o.volume_m3}, {"inertia_kg_m2", o.inertia_kg_m2},
-                    {"material", o.material}, {"created_s", o.created_s}};
+// `mesh`: the object's OBJ path relative to the scene's folder, empty for an object given by numbers.
+ordered_json object_json(const SceneObject& o, const std::string& mesh) {
+  ordered_json j = {{"id", o.id}};
+  if (mesh.empty())
+    j.update({{"mass_kg", o.mass_kg}, {"volume_m3", o.volume_m3}, {"inertia_kg_m2", o.inertia_kg_m2}});
+  else
+    j.update({{"mesh", mesh}, {"mass_kg", o.mass_kg}});  // the reader takes volume and inertia from the mesh
+  j.update({{"material", o.material}, {"created_s", o.created_s}});
   j["destroyed_s"] = std::isfinite(o.destroyed_s) ? ordered_json(o.destroyed_s) : ordered_json(nullptr);
   if (o.base_frequency_hz > 0) j["base_frequency_hz"] = o.base_frequency_hz;
   return j;
@@ -55,13 +64,81 @@ void write_list(std::ostream& out, const char* key, const std::vector<ordered_js
   out << (items.empty() ? "]" : "\n  ]") << (last ? "\n" : ",\n");
 }
 
+std::filesystem::path mesh_folder_of(const std::string& scene_path) {
+  std::filesystem::path folder = scene_path;
+  if (folder.extension() == ".json") folder.replace_extension();
+  return folder += ".meshes";
+}
+
+// Writes `text` to `path` through a temporary file and a rename: never a partial file under the name.
+void write_file_atomically(const std::filesystem::path& path, const std::string& text, const char* what) {
+  const std::string temp = path.string() + ".partial";
+  register_temporary(temp);
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(fmt::format("{}: cannot create the {} file", path.string(), what));
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error(fmt::format("{}: writing the {} failed (disk full?)", path.string(), what));
+  }
+  std::filesystem::rename(temp, path);
+  unregister_temporary(temp);
+}
+
+// Each mesh object's OBJ in the scene's mesh folder, named ID-HASH.obj by its text's hash, so a run
+// never overwrites a file the scene already there names with other content: until the new scene is
+// renamed into place, the old one and its meshes stay consistent. Returns id -> path relative to
+// the scene's folder.
+std::map<int, std::string> write_meshes(const Scene& scene, const std::string& scene_path) {
+  std::map<int, std::string> paths;
+  std::filesystem::path folder;
+  for (const auto& o : scene.objects) {
+    if (!o.mesh) {
+      if (!o.mesh_path.empty()) throw std::logic_error("write_scene: an object given by a mesh file must be loaded first");
+      continue;
+    }
+    if (folder.empty()) {
+      folder = scene_mesh_folder(scene_path);
+      std::filesystem::create_directories(folder);
+    }
+    const std::string text = obj_text(*o.mesh);
+    const std::string name = fmt::format("{}-{}.obj", o.id, hash_hex(text_hash(text)));
+    write_file_atomically(folder / name, text, "mesh");
+    paths[o.id] = folder.filename().string() + "/" + name;
+  }
+  return paths;
+}
+
+// After the new scene is in place: the mesh files of earlier scenes at this path (named as
+// write_meshes names them) that it does not name. Nothing else in the folder is touched.
+void remove_stale_meshes(const std::string& scene_path, const std::map<int, std::string>& kept) {
+  const std::filesystem::path folder = mesh_folder_of(scene_path);
+  if (!std::filesystem::is_directory(folder)) return;
+  std::set<std::string> names;
+  for (const auto& [id, path] : kept) names.insert(std::filesystem::path(path).filename().string());
+  static const std::regex ours("[0-9]+-[0-9a-f]{16}\\.obj");
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && std::regex_match(name, ours) && !names.count(name)) std::filesystem::remove(entry.path());
+  }
+}
+
 }  // namespace
+
+std::string scene_mesh_folder(const std::string& scene_path) {
+  const std::filesystem::path folder = mesh_folder_of(scene_path);
+  if (std::filesystem::exists(folder) && !std::filesystem::is_directory(folder))
+    throw InputError(fmt::format("{}: exists and is not a folder: the scene's meshes go there (move it, or choose another output)",
+                                 folder.string()));
+  return folder.string();
+}
 
 void write_scene(const Scene& scene, const std::string& path, const std::string& generator_json) {
   ordered_json materials = ordered_json::object();
   for (const auto& [name, m] : scene.materials) materials[name] = material_json(m);
   std::vector<ordered_json> objects, events, listeners;
-  for (const auto& o : scene.objects) objects.push_back(object_json(o));
+  const std::map<int, std::string> meshes = write_meshes(scene, path);
+  for (const auto& o : scene.objects) objects.push_back(object_json(o, meshes.count(o.id) ? meshes.at(o.id) : ""));
   for (const auto& e : scene.events) events.push_back(event_json(e));
   for (const auto& l : scene.listeners_m) listeners.push_back({{"position_m", l}});
   const std::string temp = path + ".partial";
@@ -83,6 +160,7 @@ void write_scene(const Scene& scene, const std::string& path, const std::string&
   }
   std::filesystem::rename(temp, path);
   unregister_temporary(temp);
+  remove_stale_meshes(path, meshes);
 }
 
 }  // namespace clatter::io

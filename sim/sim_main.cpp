@@ -13,6 +13,7 @@
 #include "core/stage_log.hpp"
 #include "io/config.hpp"
 #include "io/linked_libraries.hpp"
+#include "io/scene.hpp"
 #include "io/text_file.hpp"
 #include "sim/simulate.hpp"
 
@@ -34,6 +35,8 @@ void simulate_and_write(const Options& o, const io::Config& config) {
   std::printf("clatter-sim: %s: %.4g s at a fixed step of %.4g ms (%.4g kHz)\n", o.config_path.empty() ? "built-in config" : o.config_path.c_str(),
               config.real("sim.duration_s"), dt * 1e3, 1e-3 / dt);
   std::fflush(stdout);
+  // Before the run, not after it: a file where the meshes go would fail the write.
+  const std::string mesh_folder = io::scene_mesh_folder(o.out);
   sim::SimStats stats;
   auto progress = [&](std::size_t done, std::size_t all) {
     if (o.quiet) return;
@@ -49,9 +52,9 @@ void simulate_and_write(const Options& o, const io::Config& config) {
     Stage stage("write");
     io::write_scene(scene, o.out, generator.dump());
   }
-  std::printf("clatter-sim: wrote %s: %zu objects (%s), %zu events: %zu impacts, %zu sustained contacts, %zu fracture impulses "
+  std::printf("clatter-sim: wrote %s and its %zu objects' meshes in %s/ (%s), %zu events: %zu impacts, %zu sustained contacts, %zu fracture impulses "
               "(from %zu contact-point steps); %zu steps in %.2f s (%.3g steps/s)\n",
-              o.out.c_str(), scene.objects.size(),
+              o.out.c_str(), scene.objects.size(), mesh_folder.c_str(),
               stats.fracture_s >= 0 ? fmt::format("the plate broke at {:.4f} s", stats.fracture_s).c_str() : "no fracture",
               scene.events.size(), stats.impacts, stats.sustained, stats.fracture_events, stats.contact_samples, stats.steps,
               stats.wall_s, static_cast<double>(stats.steps) / stats.wall_s);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 
 #include "core/errors.hpp"
@@ -29,10 +30,12 @@ using io::StringList;
 // A solid's mass properties, its principal frame (the body frame of Bullet and of the scene) and,
 // when asked for, its lowest free-vibration frequency.
 struct Solid {
-  double mass_kg = 0, volume_m3 = 0;
+  double mass_kg = 0, volume_m3 = 0, surface_area_m2 = 0;
   Vec3 moments_kg_m2{};
   RigidTransform principal;  // body (principal, centred) frame -> the coordinates the mesh was given in
-  std::vector<Vec3> hull_m;  // the mesh's vertices in the body frame
+  // The mesh in the body frame: its vertices are Bullet's hull points, and the scene's poses place
+  // it, so the OBJ the scene names is the simulated geometry.
+  std::shared_ptr<const io::TriangleMesh> body_mesh;
   double base_frequency_hz = 0;  // 0: not computed
 };
 
@@ -46,6 +49,7 @@ Solid solid_of(const std::vector<Vec3>& vertices, const std::vector<std::array<i
   const double density = material.rho_kg_m3;
   Solid s;
   s.volume_m3 = mp.volume_m3;
+  s.surface_area_m2 = mp.surface_area_m2;
   s.mass_kg = density * mp.volume_m3;
   kernels::Mat3 inertia{};
   for (int i = 0; i < 3; ++i)
@@ -54,7 +58,11 @@ Solid solid_of(const std::vector<Vec3>& vertices, const std::vector<std::array<i
   s.moments_kg_m2 = fit.moments_kg_m2;
   s.principal = {quaternion_from_columns(fit.axes), mp.centroid_m};
   const RigidTransform to_body = s.principal.inverse();
-  for (const Vec3& v : vertices) s.hull_m.push_back(to_body.apply(v));
+  io::TriangleMesh body;
+  body.vertices_m.reserve(vertices.size());
+  for (const Vec3& v : vertices) body.vertices_m.push_back(to_body.apply(v));
+  body.triangles = triangles;
+  s.body_mesh = std::make_shared<const io::TriangleMesh>(std::move(body));
   if (with_base_frequency) {
     Stage stage("base frequency (FEM)");
     s.base_frequency_hz =
@@ -144,7 +152,7 @@ class Simulation {
     spec.id = id;
     spec.mass_kg = solid.mass_kg;
     spec.principal_moments_kg_m2 = solid.moments_kg_m2;
-    spec.hull_m = solid.hull_m;
+    spec.hull_m = solid.body_mesh->vertices_m;
     spec.margin_m = c_.real("bodies.margin_m");
     spec.gap_m = gap_m;
     spec.friction = c_.real("bodies.friction");
@@ -162,6 +170,8 @@ class Simulation {
     o.material = body_material_.name;
     o.created_s = created_s;
     o.base_frequency_hz = solid.base_frequency_hz;
+    o.mesh = solid.body_mesh;
+    o.surface_area_m2 = solid.surface_area_m2;
     objects_[id] = o;
   }
 

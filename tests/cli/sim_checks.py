@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """clatter-sim end to end (docs/synth.md "Scenes from a rigid-body simulator"):
 - determinism: the plate scene (scenes/plate.toml, shortened to 0.6 s: it breaks at 0.31 s) and a
-  shortened rock slide (scenes/rockslide.toml, 0.1 s), each run twice, give identical bytes;
+  shortened rock slide (scenes/rockslide.toml, 0.1 s), each run twice, give identical bytes, the
+  scene (but for its mesh folder's name) and every mesh file;
 - the scene is what the format promises, checked here on the JSON: the plate object destroyed at
   the fracture time and every piece created then (time-varying objects, 003 section 3.3), one
   fracture event per piece at that time, events in time order, momentum of the fracture impulses
@@ -10,7 +11,7 @@
   object outside a bank's coverage is listed by id with its reason (docs/synth.md "Coverage");
 - bad input, each exit 2 with one line naming the key and value, and a scene file already at the
   output path left untouched: an unknown material, one position for two meshes, a 2-vector, a
-  zero time step, nothing to simulate.
+  zero time step, nothing to simulate, a file where the scene's mesh folder goes.
 Usage: sim_checks.py CLATTER_SIM CLATTER_SYNTH SOURCE_DIR PAN_BANK MODAL_BANK GROUND_BANK SCRATCH"""
 import filecmp, json, math, os, re, sys
 
@@ -28,12 +29,22 @@ plate_args = [sim, "-q", "-c", plate_cfg, "--set", "sim.duration_s=0.6", "--set"
 for name in ("a", "b"):
     r = run(*plate_args, "-o", f"plate_{name}.json")
     check(r.returncode == 0, f"plate run {name} exits 0 ({r.returncode}: {r.stderr.strip()[-300:]})")
-check(filecmp.cmp("plate_a.json", "plate_b.json", shallow=False), "two plate runs give identical scene bytes")
+
+
+def same_scene(a, b):
+    """The same bytes but for the mesh folder's name, and the same mesh files byte for byte."""
+    text_a = open(f"{a}.json").read().replace(f'"{a}.meshes/', f'"{b}.meshes/')
+    meshes = sorted(os.listdir(f"{a}.meshes"))
+    return (text_a == open(f"{b}.json").read() and meshes == sorted(os.listdir(f"{b}.meshes"))
+            and all(filecmp.cmp(f"{a}.meshes/{m}", f"{b}.meshes/{m}", shallow=False) for m in meshes))
+
+
+check(same_scene("plate_a", "plate_b"), "two plate runs give identical scene and mesh bytes")
 rock_args = [sim, "-q", "-c", rocks_cfg, "--set", "sim.duration_s=0.1"]
 for name in ("a", "b"):
     r = run(*rock_args, "-o", f"rocks_{name}.json")
     check(r.returncode == 0, f"rock-slide run {name} exits 0 ({r.returncode}: {r.stderr.strip()[-300:]})")
-check(filecmp.cmp("rocks_a.json", "rocks_b.json", shallow=False), "two rock-slide runs give identical scene bytes")
+check(same_scene("rocks_a", "rocks_b"), "two rock-slide runs give identical scene and mesh bytes")
 
 scene = json.load(open("plate_a.json"))
 objects = {o["id"]: o for o in scene["objects"]}
@@ -44,6 +55,9 @@ check(t_break is not None and 0.25 < t_break < 0.4, f"the plate (dropped from 0.
 check(len(pieces) >= 30, f"{len(pieces)} pieces (>= 30)")
 check(all(o["created_s"] == t_break for o in pieces), "every piece is created at the fracture time")
 check(abs(sum(o["mass_kg"] for o in pieces) / plate["mass_kg"] - 1) < 1e-9, "the pieces' masses sum to the plate's")
+check(all(os.path.isfile(o["mesh"]) and o["mesh"].startswith("plate_a.meshes/") for o in scene["objects"]),
+      "every object names its mesh in plate_a.meshes/")
+check(len(os.listdir("plate_a.meshes")) == len(scene["objects"]), "one mesh file per object, no other")
 fractures = [e for e in scene["events"] if e["b"] == "fracture"]
 check(len(fractures) == len(pieces) and all(e["t_s"] == t_break for e in fractures), "one fracture event per piece, at the break")
 kick = 0.5  # plate.kick_m_s of scenes/plate.toml
@@ -81,6 +95,12 @@ for extra, word in bad:
     r = run(sim, "-c", plate_cfg, *extra, "-o", "kept.json")
     lines = r.stderr.strip().splitlines()
     check(r.returncode == 2 and len(lines) == 1 and word in lines[0], f"{' '.join(extra)}: exit 2 naming {word} ({r.returncode}: {r.stderr.strip()})")
-    check(open("kept.json").read() == "a scene the user had\n" and not os.path.exists("kept.json.partial"), f"{word}: the existing output is untouched")
+    check(open("kept.json").read() == "a scene the user had\n" and not os.path.exists("kept.json.partial")
+          and not os.path.exists("kept.meshes"), f"{word}: the existing output is untouched, no mesh folder")
+with open("kept.meshes", "w") as f:
+    f.write("not a folder\n")
+r = run(sim, "-c", plate_cfg, "-o", "kept.json")
+check(r.returncode == 2 and "kept.meshes" in r.stderr and open("kept.json").read() == "a scene the user had\n",
+      f"a file where the mesh folder goes: exit 2 before simulating, naming it ({r.returncode}: {r.stderr.strip()})")
 
 finish("sim checks")
