@@ -1,7 +1,8 @@
 #pragma once
-// Closed triangle meshes made in the test instead of stored: an icosphere (vertices on the sphere),
-// a box whose faces are split into n x n squares and a capped cylinder, both wound counter-clockwise seen from
-// outside, and an OBJ writer for tests that go through the scene reader.
+// Closed triangle meshes made in the test instead of stored, wound counter-clockwise seen from
+// outside: an icosphere (vertices on the sphere), a box whose faces are split into n x n squares, a
+// bar with its own divisions per axis, a capped cylinder (caps fanned from the centre) and a thin
+// disk with ringed faces; and an OBJ writer for tests that go through the scene reader.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -105,11 +106,96 @@ inline io::TriangleMesh cylinder(double radius_m, double height_m, int segments,
   return m;
 }
 
-inline void write_obj(const io::TriangleMesh& m, const std::string& path) {
-  std::ofstream out(path);
-  out.precision(17);
-  for (const auto& p : m.vertices_m) out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
-  for (const auto& t : m.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+// The box [0, size_m[0]] x [0, size_m[1]] x [0, size_m[2]] with cells[a] divisions along axis a,
+// each face a grid of two-triangle rectangles: a slender bar keeps near-square faces (a bar
+// 0.3 x 0.02 x 0.01 m with cells {60, 4, 2} has 5 mm squares) where box()'s n x n would stretch
+// them.
+inline io::TriangleMesh bar(std::array<double, 3> size_m, std::array<int, 3> cells) {
+  io::TriangleMesh m;
+  std::map<std::array<int, 3>, int> index;  // lattice point -> vertex
+  auto vertex = [&](std::array<int, 3> ijk) {
+    const auto it = index.find(ijk);
+    if (it != index.end()) return it->second;
+    m.vertices_m.push_back({size_m[0] * ijk[0] / cells[0], size_m[1] * ijk[1] / cells[1], size_m[2] * ijk[2] / cells[2]});
+    return index[ijk] = static_cast<int>(m.vertices_m.size()) - 1;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;  // (u, w, axis) right-handed
+      for (int i = 0; i < cells[u]; ++i)
+        for (int j = 0; j < cells[w]; ++j) {
+          auto corner = [&](int di, int dj) {
+            std::array<int, 3> ijk{};
+            ijk[axis] = side * cells[axis], ijk[u] = i + di, ijk[w] = j + dj;
+            return vertex(ijk);
+          };
+          const int a = corner(0, 0), b = corner(1, 0), c = corner(1, 1), d = corner(0, 1);
+          if (side == 1) m.triangles.insert(m.triangles.end(), {{a, b, c}, {a, c, d}});
+          else m.triangles.insert(m.triangles.end(), {{a, c, b}, {a, d, c}});
+        }
+    }
+  return m;
 }
+
+// A thin disk (a short capped cylinder) of radius_m about the z axis from z = 0 to thickness_m,
+// `segments` around its rim and `rings` concentric bands on each face, so the faces' triangles are
+// of the rim's size instead of cylinder()'s fans of slivers from the centre: ring j (of `rings`)
+// at radius R j / rings holds max(6, segments j / rings) points (rounded to a multiple of 6, so
+// neighbouring rings zip evenly), the rim `segments` (a multiple of 6). The rim's wall is one band
+// (`wall_bands` more along z for a thick disk). Counter-clockwise seen from outside.
+inline io::TriangleMesh disk(double radius_m, double thickness_m, int segments, int rings, int wall_bands = 1) {
+  const double two_pi = 2 * 3.14159265358979323846;
+  io::TriangleMesh m;
+  std::vector<int> ring_size(static_cast<std::size_t>(rings) + 1);
+  for (int j = 1; j <= rings; ++j) ring_size[j] = j == rings ? segments : std::max(6, 6 * ((segments * j / rings + 3) / 6));
+  // One face's points: the centre, then each ring's points, counter-clockwise about +z.
+  auto face = [&](double z) {
+    std::vector<std::vector<int>> ids(static_cast<std::size_t>(rings) + 1);
+    ids[0] = {static_cast<int>(m.vertices_m.size())};
+    m.vertices_m.push_back({0, 0, z});
+    for (int j = 1; j <= rings; ++j)
+      for (int i = 0; i < ring_size[j]; ++i) {
+        const double a = two_pi * i / ring_size[j], r = radius_m * j / rings;
+        ids[j].push_back(static_cast<int>(m.vertices_m.size()));
+        m.vertices_m.push_back({r * std::cos(a), r * std::sin(a), z});
+      }
+    return ids;
+  };
+  // Triangles between two rings, counter-clockwise about +z: the merge of their points by angle.
+  auto band = [&](const std::vector<int>& inner, const std::vector<int>& outer, bool up) {
+    const std::size_t ni = inner.size(), no = outer.size();
+    std::size_t i = 0, o = 0;
+    while (i < ni || o < no) {
+      // Advance on the ring whose next point comes first in angle (inner: a fan when it is one point).
+      const bool take_outer = ni == 1 || (o < no && (i == ni || (o + 1) * ni <= (i + 1) * no));
+      std::array<int, 3> t = take_outer ? std::array<int, 3>{inner[i % ni], outer[o % no], outer[(o + 1) % no]}
+                                        : std::array<int, 3>{inner[i % ni], outer[o % no], inner[(i + 1) % ni]};
+      if (!up) std::swap(t[1], t[2]);
+      m.triangles.push_back(t);
+      (take_outer ? o : i) += 1;
+      if (ni == 1 && o == no) break;
+    }
+  };
+  std::vector<std::vector<int>> bottom = face(0), top = face(thickness_m), walls{bottom[rings]};
+  for (int j = 0; j < rings; ++j) band(bottom[j], bottom[j + 1], false), band(top[j], top[j + 1], true);
+  for (int k = 1; k < wall_bands; ++k) {
+    walls.emplace_back();
+    for (int i = 0; i < segments; ++i) {
+      const double a = two_pi * i / segments;
+      walls.back().push_back(static_cast<int>(m.vertices_m.size()));
+      m.vertices_m.push_back({radius_m * std::cos(a), radius_m * std::sin(a), thickness_m * k / wall_bands});
+    }
+  }
+  walls.push_back(top[rings]);
+  for (std::size_t k = 0; k + 1 < walls.size(); ++k)
+    for (int i = 0; i < segments; ++i) {
+      const int a = walls[k][i], b = walls[k][(i + 1) % segments], c = walls[k + 1][(i + 1) % segments], d = walls[k + 1][i];
+      m.triangles.insert(m.triangles.end(), {{a, b, c}, {a, c, d}});
+    }
+  return m;
+}
+
+// The mesh as the OBJ text clatter reads (io::obj_text: shortest round-trip numbers).
+inline void write_obj(const io::TriangleMesh& m, const std::string& path) { std::ofstream(path) << io::obj_text(m); }
 
 }  // namespace clatter::test
