@@ -1,0 +1,216 @@
+#include "kernels/fem/smooth_surface.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <numeric>
+#include <utility>
+
+namespace clatter::kernels::fem {
+namespace {
+
+using V3 = Eigen::Vector3d;
+using P3 = std::array<double, 3>;
+
+V3 vec(const P3& p) { return {p[0], p[1], p[2]}; }
+P3 arr(const V3& v) { return {v(0), v(1), v(2)}; }
+
+// The corner slots (3 t + k) of one vertex joined across its smooth edges: one root per sector.
+class Sectors {
+ public:
+  explicit Sectors(std::size_t slots) : parent_(slots) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int root(int s) {
+    while (parent_[s] != s) s = parent_[s] = parent_[parent_[s]];
+    return s;
+  }
+  void join(int a, int b) { parent_[root(a)] = root(b); }
+
+ private:
+  std::vector<int> parent_;
+};
+
+int corner_of(const std::array<int, 3>& f, int v) { return f[0] == v ? 0 : f[1] == v ? 1 : 2; }
+
+}  // namespace
+
+SmoothSurface::SmoothSurface(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                             double smooth_dihedral_deg) {
+  const std::size_t nt = triangles.size();
+  std::vector<V3> normal(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& f = triangles[t];
+    normal[t] = (vec(vertices[f[1]]) - vec(vertices[f[0]])).cross(vec(vertices[f[2]]) - vec(vertices[f[0]])).normalized();
+  }
+  // Each undirected edge with its two triangles (the surface is closed and manifold).
+  std::map<std::pair<int, int>, std::array<int, 2>> edge_faces;
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+      auto [it, fresh] = edge_faces.try_emplace({std::min(a, b), std::max(a, b)}, std::array<int, 2>{static_cast<int>(t), -1});
+      if (!fresh) it->second[1] = static_cast<int>(t);
+    }
+  const double cos_limit = std::cos(smooth_dihedral_deg * std::numbers::pi / 180);
+  sharp_.assign(nt, {false, false, false});
+  Sectors sectors(3 * nt);
+  for (const auto& [e, f] : edge_faces) {
+    ++edges_;
+    if (f[1] < 0) continue;
+    // Normals turning by smooth_dihedral_deg or more: sharp (0 degrees makes every edge sharp).
+    const bool sharp = !(normal[f[0]].dot(normal[f[1]]) > cos_limit) || smooth_dihedral_deg <= 0;
+    for (int side = 0; side < 2; ++side) {
+      const auto& tri = triangles[f[side]];
+      const int k = corner_of(tri, e.first), j = corner_of(tri, e.second);
+      sharp_[f[side]][(j == (k + 1) % 3) ? k : j] = sharp;
+    }
+    sharp_edges_ += sharp;
+    if (sharp) continue;
+    for (int v : {e.first, e.second})
+      sectors.join(3 * f[0] + corner_of(triangles[f[0]], v), 3 * f[1] + corner_of(triangles[f[1]], v));
+  }
+  // Angle-weighted normal per sector (independent of how the sector is cut into triangles).
+  std::vector<V3> sum(3 * nt, V3::Zero());
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto& f = triangles[t];
+      const V3 p = vec(vertices[f[k]]), u = vec(vertices[f[(k + 1) % 3]]) - p, w = vec(vertices[f[(k + 2) % 3]]) - p;
+      sum[sectors.root(static_cast<int>(3 * t) + k)] += std::atan2(u.cross(w).norm(), u.dot(w)) * normal[t];
+    }
+  control_m_.resize(nt);
+  flat_.assign(nt, false);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& f = triangles[t];
+    V3 p[3], n[3];
+    for (int k = 0; k < 3; ++k) p[k] = vec(vertices[f[k]]), n[k] = sum[sectors.root(static_cast<int>(3 * t) + k)].normalized();
+    flat_[t] = n[0].dot(normal[t]) > 1 - 1e-14 && n[1].dot(normal[t]) > 1 - 1e-14 && n[2].dot(normal[t]) > 1 - 1e-14;
+    // Edge control point near corner i towards j: the third point projected into i's tangent plane.
+    auto edge_point = [&](int i, int j, int k_edge) {
+      const double w = sharp_[t][k_edge] ? 0.0 : (p[j] - p[i]).dot(n[i]);
+      return V3((2 * p[i] + p[j] - w * n[i]) / 3);
+    };
+    const V3 b210 = edge_point(0, 1, 0), b120 = edge_point(1, 0, 0), b021 = edge_point(1, 2, 1),
+             b012 = edge_point(2, 1, 1), b102 = edge_point(2, 0, 2), b201 = edge_point(0, 2, 2);
+    const V3 e = (b210 + b120 + b021 + b012 + b102 + b201) / 6, v = (p[0] + p[1] + p[2]) / 3;
+    control_m_[t] = {arr(p[0]), arr(p[1]), arr(p[2]), arr(b210), arr(b120), arr(b021), arr(b012), arr(b102), arr(b201),
+                     arr(e + (e - v) / 2)};
+  }
+}
+
+P3 SmoothSurface::point(int t, const P3& b) const {
+  const auto& c = control_m_[static_cast<std::size_t>(t)];
+  const double u = b[0], v = b[1], w = b[2];
+  const double weight[10] = {u * u * u,     v * v * v,     w * w * w,     3 * u * u * v, 3 * u * v * v,
+                             3 * v * v * w, 3 * v * w * w, 3 * u * w * w, 3 * u * u * w, 6 * u * v * w};
+  P3 x{0, 0, 0};
+  for (int i = 0; i < 10; ++i)
+    for (int k = 0; k < 3; ++k) x[k] += weight[i] * c[i][k];
+  return x;
+}
+
+namespace {
+
+// A bounding-volume tree over triangles, split at the median centroid along the widest axis.
+struct Bvh {
+  struct Node {
+    V3 lo, hi;
+    int left = -1, right = -1, first = 0, count = 0;
+  };
+  std::vector<Node> nodes;
+  std::vector<int> order;
+  const std::vector<P3>* vertices;
+  const std::vector<std::array<int, 3>>* triangles;
+
+  V3 corner(int t, int k) const { return vec((*vertices)[(*triangles)[t][k]]); }
+
+  int build(int first, int count, const std::vector<V3>& centroid) {
+    Node node;
+    node.lo = V3::Constant(std::numeric_limits<double>::infinity()), node.hi = -node.lo;
+    for (int i = first; i < first + count; ++i)
+      for (int k = 0; k < 3; ++k) node.lo = node.lo.cwiseMin(corner(order[i], k)), node.hi = node.hi.cwiseMax(corner(order[i], k));
+    const int index = static_cast<int>(nodes.size());
+    nodes.push_back(node);
+    if (count <= 4) {
+      nodes[index].first = first, nodes[index].count = count;
+      return index;
+    }
+    int axis = 0;
+    (node.hi - node.lo).maxCoeff(&axis);
+    const auto mid = order.begin() + first + count / 2;
+    std::nth_element(order.begin() + first, mid, order.begin() + first + count, [&](int a, int b) {
+      return centroid[a](axis) < centroid[b](axis) || (centroid[a](axis) == centroid[b](axis) && a < b);
+    });
+    const int left = build(first, count / 2, centroid), right = build(first + count / 2, count - count / 2, centroid);
+    nodes[index].left = left, nodes[index].right = right;
+    return index;
+  }
+
+  static bool box_hit(const Node& n, const V3& o, const V3& inv_d, double t_max) {
+    double t0 = 0, t1 = t_max;
+    for (int k = 0; k < 3; ++k) {
+      double a = (n.lo(k) - o(k)) * inv_d(k), b = (n.hi(k) - o(k)) * inv_d(k);
+      if (a > b) std::swap(a, b);
+      t0 = std::max(t0, a), t1 = std::min(t1, b);
+    }
+    return t0 <= t1;
+  }
+
+  // Moller-Trumbore: the ray's parameter at triangle t, or infinity.
+  double hit(int t, const V3& o, const V3& d) const {
+    const V3 a = corner(t, 0), e1 = corner(t, 1) - a, e2 = corner(t, 2) - a, p = d.cross(e2);
+    const double det = e1.dot(p);
+    if (std::abs(det) < 1e-300) return std::numeric_limits<double>::infinity();
+    const V3 s = o - a;
+    const double u = s.dot(p) / det;
+    if (u < 0 || u > 1) return std::numeric_limits<double>::infinity();
+    const V3 q = s.cross(e1);
+    const double v = d.dot(q) / det;
+    if (v < 0 || u + v > 1) return std::numeric_limits<double>::infinity();
+    return e2.dot(q) / det;
+  }
+
+  double nearest(const V3& o, const V3& d, int skip) const {
+    const V3 inv_d = d.cwiseInverse();
+    double best = std::numeric_limits<double>::infinity();
+    std::vector<int> stack{0};
+    while (!stack.empty()) {
+      const Node& n = nodes[stack.back()];
+      stack.pop_back();
+      if (!box_hit(n, o, inv_d, best)) continue;
+      if (n.left >= 0) {
+        stack.push_back(n.left), stack.push_back(n.right);
+        continue;
+      }
+      for (int i = n.first; i < n.first + n.count; ++i)
+        if (order[i] != skip) {
+          const double t = hit(order[i], o, d);
+          if (t > 0 && t < best) best = t;
+        }
+    }
+    return best;
+  }
+};
+
+}  // namespace
+
+std::vector<double> thickness_under_triangles_m(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+  const int nt = static_cast<int>(triangles.size());
+  Bvh tree;
+  tree.vertices = &vertices, tree.triangles = &triangles;
+  tree.order.resize(nt);
+  std::iota(tree.order.begin(), tree.order.end(), 0);
+  std::vector<V3> centroid(nt), inward(nt);
+  for (int t = 0; t < nt; ++t) {
+    centroid[t] = (tree.corner(t, 0) + tree.corner(t, 1) + tree.corner(t, 2)) / 3;
+    inward[t] = -(tree.corner(t, 1) - tree.corner(t, 0)).cross(tree.corner(t, 2) - tree.corner(t, 0)).normalized();
+  }
+  tree.build(0, nt, centroid);
+  const double reach = (tree.nodes[0].hi - tree.nodes[0].lo).norm();
+  std::vector<double> out(nt);
+  for (int t = 0; t < nt; ++t) out[t] = std::min(tree.nearest(centroid[t], inward[t], t), reach);
+  return out;
+}
+
+}  // namespace clatter::kernels::fem
