@@ -10,9 +10,11 @@
 //   q   quality: radius-edge ratio <= r, dihedral angles >= d degrees;
 //   a   volume bound v = h^3 / (6 sqrt 2), the regular tetrahedron of edge h;
 //   Q   quiet.
-// Should TetGen still put a point on the surface, it lies on a flat facet and is moved here onto
-// the smooth surface.
+// Should TetGen still put a point on the surface, it lies on a flat facet and is projected here onto
+// the smooth surface, as every boundary mid-node is.
 #include "kernels/fem/object_mesh.hpp"
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -33,18 +35,17 @@ namespace {
 using P3 = std::array<double, 3>;
 using Face = std::array<int, 3>;
 
-std::int64_t edge_key(int a, int b) {
-  return static_cast<std::int64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
-}
 
-LinearMesh run_tetgen(const RefinedSurface& s, const ObjectMeshSettings& settings, double h_m, std::vector<Face>& faces,
-                      std::vector<int>& face_facet) {
+LinearMesh run_tetgen(const RefinedSurface& s, const std::vector<P3>& inner, const ObjectMeshSettings& settings, double h_m,
+                      std::vector<Face>& faces, std::vector<int>& face_facet) {
+  std::vector<P3> points = s.points_m;
+  points.insert(points.end(), inner.begin(), inner.end());
   char switches[128];
   std::snprintf(switches, sizeof switches, "pYq%.6g/%.6ga%.9gQ", settings.max_radius_edge, settings.min_dihedral_deg,
                 h_m * h_m * h_m / (6 * std::numbers::sqrt2));
   TetgenFill fill;
   try {
-    fill = tetgen_fill(s.points_m, s.facets, switches, false, true);
+    fill = tetgen_fill(points, s.facets, switches, false, true);
   } catch (const std::invalid_argument& e) {
     throw MeshError("object mesh", e.what());
   }
@@ -80,46 +81,10 @@ std::vector<Face> boundary_faces(const LinearMesh& m) {
   return boundary;
 }
 
-// Barycentric coordinates of x (on the plane of a, b, c, up to rounding), clamped into the triangle.
-P3 barycentric(const P3& x, const P3& a, const P3& b, const P3& c) {
-  double d00 = 0, d01 = 0, d11 = 0, d20 = 0, d21 = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double v0 = b[k] - a[k], v1 = c[k] - a[k], v2 = x[k] - a[k];
-    d00 += v0 * v0, d01 += v0 * v1, d11 += v1 * v1, d20 += v2 * v0, d21 += v2 * v1;
-  }
-  const double det = d00 * d11 - d01 * d01;
-  P3 w{0, (d11 * d20 - d01 * d21) / det, (d00 * d21 - d01 * d20) / det};
-  w[0] = 1 - w[1] - w[2];
-  double sum = 0;
-  for (double& x_k : w) sum += (x_k = std::max(x_k, 0.0));
-  for (double& x_k : w) x_k /= sum;
-  return w;
-}
-
-// A boundary face's place on the smooth surface: the input triangle it lies in and its three
-// vertices' barycentric coordinates there.
-struct FacePlace {
-  int source;
-  std::array<P3, 3> at;
-};
-
-FacePlace place_face(const Face& f, int facet, const RefinedSurface& s, const std::vector<P3>& flat) {
-  FacePlace out{s.source[facet], {}};
-  const Face& g = s.facets[facet];
-  const auto& cb = s.corner_barycentric[facet];
-  for (int i = 0; i < 3; ++i) {
-    const int corner = g[0] == f[i] ? 0 : g[1] == f[i] ? 1 : g[2] == f[i] ? 2 : -1;
-    const P3 w = corner >= 0 ? P3{corner == 0 ? 1.0 : 0.0, corner == 1 ? 1.0 : 0.0, corner == 2 ? 1.0 : 0.0}
-                             : barycentric(flat[f[i]], s.points_m[g[0]], s.points_m[g[1]], s.points_m[g[2]]);
-    for (int k = 0; k < 3; ++k) out.at[i][k] = w[0] * cb[0][k] + w[1] * cb[1][k] + w[2] * cb[2][k];
-  }
-  return out;
-}
-
 P3 midpoint(const P3& a, const P3& b) { return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])}; }
 
-ObjectMesh quadratic_mesh(LinearMesh& m, const RefinedSurface& s, const SmoothSurface& surface, const std::vector<Face>& faces,
-                          const std::vector<int>& face_facet) {
+ObjectMesh quadratic_mesh(LinearMesh& m, const RefinedSurface& s, const SurfaceProjector& projector,
+                          const std::vector<Face>& faces, const std::vector<int>& face_facet) {
   for (auto& t : m.tets) {
     const double o = orientation(m, t);
     if (!(o != 0)) throw MeshError("object mesh", "TetGen made a degenerate tetrahedron");
@@ -128,43 +93,39 @@ ObjectMesh quadratic_mesh(LinearMesh& m, const RefinedSurface& s, const SmoothSu
   std::map<Face, int> facet_of;
   for (std::size_t f = 0; f < faces.size(); ++f) facet_of.emplace(sorted(faces[f]), face_facet[f]);
   const std::vector<Face> boundary = boundary_faces(m);
-  const std::vector<P3> flat = m.points;
   std::vector<P3> nodes = m.points;
-  std::vector<FacePlace> places;
-  std::vector<bool> placed(nodes.size(), false);
+  std::vector<int> near;  // per boundary face: an input triangle near it
   for (const Face& f : boundary) {
     const auto it = facet_of.find(sorted(f));
     if (it == facet_of.end() || it->second < 0) throw MeshError("object mesh", "a boundary face TetGen did not mark");
-    places.push_back(place_face(f, it->second, s, flat));
-    for (int i = 0; i < 3; ++i)
-      if (static_cast<std::size_t>(f[i]) >= s.points_m.size() && !placed[f[i]])  // a point TetGen added on the surface
-        nodes[f[i]] = surface.point(places.back().source, places.back().at[i]), placed[f[i]] = true;
+    near.push_back(s.near_triangle[it->second]);
+    for (int v : f)  // a point TetGen added on the surface (-Y allows none, but should it): onto it
+      if (static_cast<std::size_t>(v) >= s.points_m.size() && nodes[v] == m.points[v]) nodes[v] = projector.project(nodes[v], near.back());
   }
   ObjectMesh out;
   std::unordered_map<std::int64_t, int> mid;  // numbered in order of first use: deterministic
   auto add_mid = [&](int a, int b, const P3& x) {
-    const auto [it, fresh] = mid.try_emplace(edge_key(a, b), static_cast<int>(nodes.size()));
+    const auto [it, fresh] = mid.try_emplace(undirected_edge_key(a, b), static_cast<int>(nodes.size()));
     if (fresh) nodes.push_back(x);
     return it->second;
   };
-  // Boundary mid-nodes first, on the smooth surface at the edge's parameter midpoint.
+  // Boundary mid-nodes first: the chord's midpoint projected onto the smooth surface.
   for (std::size_t b = 0; b < boundary.size(); ++b) {
     const Face& f = boundary[b];
-    const FacePlace& p = places[b];
     BoundaryFace face{f[0], f[1], f[2], 0, 0, 0};
     for (int k = 0; k < 3; ++k) {
       const int a = f[k], c = f[(k + 1) % 3];
-      const bool fresh = !mid.count(edge_key(a, c));
-      face[3 + k] = add_mid(a, c, surface.point(p.source, midpoint(p.at[k], p.at[(k + 1) % 3])));
-      if (!fresh) continue;
-      const P3 chord = midpoint(nodes[a], nodes[c]), &x = nodes[face[3 + k]];
+      if (mid.count(undirected_edge_key(a, c))) {
+        face[3 + k] = mid.at(undirected_edge_key(a, c));
+        continue;
+      }
+      const P3 chord = midpoint(nodes[a], nodes[c]);
+      int start = near[b];
+      face[3 + k] = add_mid(a, c, projector.project(chord, start));
+      const P3& x = nodes[face[3 + k]];
       const double length = std::hypot(nodes[a][0] - nodes[c][0], nodes[a][1] - nodes[c][1], nodes[a][2] - nodes[c][2]);
       out.curved_edges += std::hypot(x[0] - chord[0], x[1] - chord[1], x[2] - chord[2]) > 1e-9 * length;
-      for (int e = 0; e < 3; ++e)  // along input edge e: the input corner opposite it has weight 0 at both ends
-        if (surface.sharp(p.source, e) && std::abs(p.at[k][(e + 2) % 3]) < 1e-9 && std::abs(p.at[(k + 1) % 3][(e + 2) % 3]) < 1e-9) {
-          ++out.sharp_edges;
-          break;
-        }
+      out.sharp_edges += s.sharp_edges.count(undirected_edge_key(a, c)) > 0;
     }
     out.boundary.push_back(face);
   }
@@ -195,6 +156,56 @@ std::string bounds_problem(const MeshQuality& q, const EllipsoidMeshBounds& b) {
   return reason;
 }
 
+// Points under the curved elements that break the Jacobian bound: most are caps, tetrahedra on
+// four surface points with two faces on the surface (TetGen, kept from splitting the surface,
+// leaves some where no interior point is near); curving both faces outward folds them. A point
+// under the cap lies inside its circumsphere (about the surface's osculating sphere), so TetGen's
+// Delaunay fill replaces the cap. Each goes below the centroid by 0.3 of the faces' mean edge.
+std::vector<P3> points_under_folds(const ObjectMesh& out, const EllipsoidMeshBounds& bounds) {
+  std::map<Face, int> on_boundary;
+  for (std::size_t b = 0; b < out.boundary.size(); ++b)
+    on_boundary.emplace(sorted({out.boundary[b][0], out.boundary[b][1], out.boundary[b][2]}), static_cast<int>(b));
+  static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  std::vector<P3> points;
+  for (const auto& e : out.mesh.elements) {
+    Tet10Coords x;
+    for (int i = 0; i < kTet10Nodes; ++i) x.col(i) = out.mesh.nodes_m.col(e[i]);
+    if (jacobian_ratio(x) >= bounds.min_jacobian_ratio) continue;
+    Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+    double edges = 0;
+    int faces = 0;
+    for (const auto& face : kFaces) {
+      if (!on_boundary.count(sorted({e[face[0]], e[face[1]], e[face[2]]}))) continue;
+      const Eigen::Vector3d a = x.col(face[0]), b = x.col(face[1]), c = x.col(face[2]);
+      outward += (b - a).cross(c - a).normalized();
+      edges += (b - a).norm() + (c - b).norm() + (a - c).norm();
+      ++faces;
+    }
+    if (faces == 0) continue;
+    const Eigen::Vector3d p = x.leftCols<4>().rowwise().mean() - 0.3 * edges / (3 * faces) * outward.normalized();
+    points.push_back({p(0), p(1), p(2)});
+  }
+  return points;
+}
+
+// TetGen's fill of the refined surface and the quadratic mesh on it, with points added under
+// folded elements for a few rounds (the mesh of the last round is returned either way).
+ObjectMesh mesh_refined(const RefinedSurface& refined, const SurfaceProjector& projector, const ObjectMeshSettings& settings,
+                        double h_m, const EllipsoidMeshBounds& bounds) {
+  std::vector<P3> inner;
+  for (int round = 0;; ++round) {
+    std::vector<Face> faces;
+    std::vector<int> face_facet;
+    LinearMesh linear = run_tetgen(refined, inner, settings, h_m, faces, face_facet);
+    ObjectMesh out = quadratic_mesh(linear, refined, projector, faces, face_facet);
+    out.quality = mesh_quality(out.mesh);
+    if (round == 4 || out.quality.min_jacobian_ratio >= bounds.min_jacobian_ratio) return out;
+    const std::vector<P3> more = points_under_folds(out, bounds);
+    if (more.empty()) return out;
+    inner.insert(inner.end(), more.begin(), more.end());
+  }
+}
+
 }  // namespace
 
 ObjectMesh mesh_object(const std::vector<P3>& vertices, const std::vector<Face>& triangles, const ObjectMeshSettings& settings,
@@ -204,6 +215,7 @@ ObjectMesh mesh_object(const std::vector<P3>& vertices, const std::vector<Face>&
     throw std::invalid_argument("mesh_object: need edge length > 0, elements through thickness >= 1, smooth angle >= 0, retries >= 0");
   check_object_surface(vertices, triangles);
   const SmoothSurface surface(vertices, triangles, settings.smooth_dihedral_deg);
+  const SurfaceProjector projector(vertices, triangles, surface);
   const std::vector<double> thickness = thickness_under_triangles_m(vertices, triangles);
   // A vertex is as thin as the thinnest triangle around it: a plate's rim takes its faces' thickness.
   std::vector<double> vertex_thickness(vertices.size(), std::numeric_limits<double>::infinity());
@@ -213,16 +225,11 @@ ObjectMesh mesh_object(const std::vector<P3>& vertices, const std::vector<Face>&
   std::string reasons;
   double scale = 1;  // a retry scales every size, the thickness's too
   for (int attempt = 0; attempt <= settings.retries; ++attempt, scale *= 0.8) {
-    const double h = scale * settings.edge_length_m;
     std::vector<double> size(vertices.size());
     for (std::size_t v = 0; v < vertices.size(); ++v)
       size[v] = scale * std::min(settings.edge_length_m, vertex_thickness[v] / settings.elements_through_thickness);
-    const RefinedSurface refined = refine_surface(vertices, triangles, surface, size, settings.max_surface_triangles);
-    std::vector<Face> faces;
-    std::vector<int> face_facet;
-    LinearMesh linear = run_tetgen(refined, settings, h, faces, face_facet);
-    ObjectMesh out = quadratic_mesh(linear, refined, surface, faces, face_facet);
-    out.quality = mesh_quality(out.mesh);
+    const RefinedSurface refined = refine_surface(vertices, triangles, projector, size, settings.max_surface_triangles);
+    ObjectMesh out = mesh_refined(refined, projector, settings, scale * settings.edge_length_m, bounds);
     out.quality.edge_length_m = scale * std::min(settings.edge_length_m, min_thickness / settings.elements_through_thickness);
     out.min_thickness_m = min_thickness;
     const std::string problem = bounds_problem(out.quality, bounds);

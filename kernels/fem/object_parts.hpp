@@ -2,28 +2,53 @@
 // The object mesher's surface refinement (object_refine.cpp; internal to kernels/fem/object_*.cpp).
 #include <array>
 #include <cstdint>
+#include <unordered_set>
 #include <vector>
 
 #include "kernels/fem/smooth_surface.hpp"
 
 namespace clatter::kernels::fem {
 
-// The input's triangles cut into facets, each inside one input triangle (its source), its corners
-// on the smooth surface at the given barycentric coordinates of the source.
+// Points onto the smooth surface: x goes to the input triangle whose plane it projects into
+// (found by walking from a nearby triangle across the edge x lies beyond) and onto that triangle's
+// patch at the projection's barycentric coordinates. Near the surface (within a fraction of the
+// curvature radius) this moves x along about the normal; points on the input's triangles and
+// edges stay where they are where the patch is flat or the edge straight.
+class SurfaceProjector {
+ public:
+  SurfaceProjector(const std::vector<std::array<double, 3>>& vertices_m, const std::vector<std::array<int, 3>>& triangles,
+                   const SmoothSurface& surface);
+  // `triangle`: where the walk starts; on return, the triangle x went to.
+  std::array<double, 3> project(const std::array<double, 3>& x_m, int& triangle) const;
+  const SmoothSurface& surface() const { return surface_; }
+
+ private:
+  const std::vector<std::array<double, 3>>& vertices_;
+  const std::vector<std::array<int, 3>>& triangles_;
+  const SmoothSurface& surface_;
+  std::vector<std::array<int, 3>> across_;  // the triangle across edge k (corners k, k+1)
+};
+
+std::int64_t undirected_edge_key(int a, int b);
+
+// The input's triangles cut into facets with their points on the smooth surface; each facet
+// remembers an input triangle near it (where projections from it start).
 struct RefinedSurface {
   std::vector<std::array<double, 3>> points_m;
   std::vector<double> size_m;  // target edge length at each point
   std::vector<std::array<int, 3>> facets;
-  std::vector<int> source;
-  std::vector<std::array<std::array<double, 3>, 3>> corner_barycentric;
+  std::vector<int> near_triangle;
+  std::unordered_set<std::int64_t> sharp_edges;  // facet edges along the input's sharp edges (undirected_edge_key)
 };
 
 // Rivara's longest-edge bisection (an edge is cut only once it is the longest of both its facets,
 // so angles stay bounded below by the input's) until no edge is longer than the mean of its ends'
-// sizes; the new point of an edge at its parameter midpoint on the smooth surface. Then Delaunay
-// flips, and in flat regions points moved towards their neighbours' mean. Throws MeshError past max_facets.
+// sizes, the new points projected onto the smooth surface; then Delaunay flips, points closer than
+// a third of their size merged and points smoothed towards their neighbours' mean (off the sharp
+// edges), which clears the rows of points the bisection of long thin input triangles leaves.
+// Throws MeshError past max_facets.
 RefinedSurface refine_surface(const std::vector<std::array<double, 3>>& vertices_m,
-                              const std::vector<std::array<int, 3>>& triangles, const SmoothSurface& surface,
+                              const std::vector<std::array<int, 3>>& triangles, const SurfaceProjector& projector,
                               const std::vector<double>& vertex_size_m, std::int64_t max_facets);
 
 }  // namespace clatter::kernels::fem

@@ -80,12 +80,10 @@ SmoothSurface::SmoothSurface(const std::vector<P3>& vertices, const std::vector<
       sum[sectors.root(static_cast<int>(3 * t) + k)] += std::atan2(u.cross(w).norm(), u.dot(w)) * normal[t];
     }
   control_m_.resize(nt);
-  flat_.assign(nt, false);
   for (std::size_t t = 0; t < nt; ++t) {
     const auto& f = triangles[t];
     V3 p[3], n[3];
     for (int k = 0; k < 3; ++k) p[k] = vec(vertices[f[k]]), n[k] = sum[sectors.root(static_cast<int>(3 * t) + k)].normalized();
-    flat_[t] = n[0].dot(normal[t]) > 1 - 1e-14 && n[1].dot(normal[t]) > 1 - 1e-14 && n[2].dot(normal[t]) > 1 - 1e-14;
     // Edge control point near corner i towards j: the third point projected into i's tangent plane.
     auto edge_point = [&](int i, int j, int k_edge) {
       const double w = sharp_[t][k_edge] ? 0.0 : (p[j] - p[i]).dot(n[i]);

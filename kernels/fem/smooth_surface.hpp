@@ -22,15 +22,12 @@ class SmoothSurface {
   std::array<double, 3> point(int t, const std::array<double, 3>& barycentric) const;
   // Edge k of triangle t (corners k, k+1) is sharp: straight.
   bool sharp(int t, int k) const { return sharp_[static_cast<std::size_t>(t)][static_cast<std::size_t>(k)]; }
-  // Triangle t's patch is the flat triangle itself (its corners' normals are its own).
-  bool flat(int t) const { return flat_[static_cast<std::size_t>(t)]; }
   std::int64_t sharp_edge_count() const { return sharp_edges_; }
   std::int64_t edge_count() const { return edges_; }
 
  private:
   std::vector<std::array<std::array<double, 3>, 10>> control_m_;  // b300 b030 b003 b210 b120 b021 b012 b102 b201 b111
   std::vector<std::array<bool, 3>> sharp_;
-  std::vector<bool> flat_;
   std::int64_t sharp_edges_ = 0, edges_ = 0;
 };
 

@@ -181,6 +181,25 @@ TEST(ObjectMesh, SlenderBar) {
   EXPECT_GT(across, 2.5);
 }
 
+// A rod as CAD exports one: its side two triangles 30 cm long and 2.6 mm wide per segment, curved.
+// Bisection leaves rows of points along their diagonals; the smoothing and flips clear them.
+TEST(ObjectMesh, SlenderRodOfLongThinTriangles) {
+  const double r = 0.01, length = 0.3;
+  ObjectMeshSettings settings;
+  settings.edge_length_m = 0.05;
+  const TriangleMesh rod = clatter::test::cylinder(r, length, 24, 1);
+  const ObjectMesh m = timed_mesh("rod", rod, settings);
+  expect_within_bounds(m);
+  expect_closed(m);
+  EXPECT_EQ(m.sharp_edges, 48);  // the two rims, 24 segments each: straight, never split (h > their 2.6 mm)
+  EXPECT_GT(m.curved_edges, 0);
+  const double v = mesh_volume(m, true), v_polygon = check_object_surface(rod.vertices_m, rod.triangles);
+  const double v_cylinder = std::numbers::pi * r * r * length;
+  std::printf("rod: volume %.6g m^3, input polygon error %.3g, cylinder error %.3g\n", v, v / v_polygon - 1, v / v_cylinder - 1);
+  EXPECT_GT(v, v_polygon);
+  EXPECT_LT(v, v_cylinder);
+}
+
 // The volume of a sphere from icosphere inputs of edge ~h, meshed at h: the curved boundary's
 // error against the sphere falls as a higher power of h than the straight one's.
 TEST(ObjectMesh, SphereVolumeConvergesFasterCurved) {
