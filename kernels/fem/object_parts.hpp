@@ -9,11 +9,9 @@
 
 namespace clatter::kernels::fem {
 
-// Points onto the smooth surface: x goes to the input triangle whose plane it projects into
-// (found by walking from a nearby triangle across the edge x lies beyond) and onto that triangle's
-// patch at the projection's barycentric coordinates. Near the surface (within a fraction of the
-// curvature radius) this moves x along about the normal; points on the input's triangles and
-// edges stay where they are where the patch is flat or the edge straight.
+// Points onto the smooth surface: x goes to its foot (nearest point) on the patch of the input
+// triangle it lies over, found by walking from a nearby triangle across the edge x lies beyond.
+// Points on a flat patch or a straight (sharp) edge stay where they are.
 class SurfaceProjector {
  public:
   SurfaceProjector(const std::vector<std::array<double, 3>>& vertices_m, const std::vector<std::array<int, 3>>& triangles,
@@ -23,6 +21,7 @@ class SurfaceProjector {
   const SmoothSurface& surface() const { return surface_; }
 
  private:
+  std::array<double, 3> foot(int t, const std::array<double, 3>& x_m) const;
   const std::vector<std::array<double, 3>>& vertices_;
   const std::vector<std::array<int, 3>>& triangles_;
   const SmoothSurface& surface_;

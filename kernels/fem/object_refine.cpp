@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -47,15 +48,36 @@ SurfaceProjector::SurfaceProjector(const std::vector<P3>& vertices, const std::v
     }
 }
 
+// The foot of x on triangle t's patch: from the flat triangle's barycentric coordinates, Gauss-
+// Newton on |x - P(b)|^2 (derivatives by central differences: they steer the steps only, the
+// point returned is P(b) itself, on the patch). Coordinates may leave [0, 1]: x is then over a
+// neighbour. Projecting onto the flat triangles alone would leave gaps over convex corners, where
+// a point above the flat faces (as the patches are) is over none of them.
+P3 SurfaceProjector::foot(int t, const P3& x) const {
+  const auto& f = triangles_[t];
+  P3 w = planar_barycentric(vec(x), vec(vertices_[f[0]]), vec(vertices_[f[1]]), vec(vertices_[f[2]]));
+  constexpr double kStep = 1e-5;
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    auto at = [&](double du, double dv) { return vec(surface_.point(t, {w[0] - du - dv, w[1] + du, w[2] + dv})); };
+    const V3 p = at(0, 0), pu = (at(kStep, 0) - at(-kStep, 0)) / (2 * kStep), pv = (at(0, kStep) - at(0, -kStep)) / (2 * kStep);
+    const V3 r = vec(x) - p;
+    const double a = pu.dot(pu), b = pu.dot(pv), c = pv.dot(pv), det = a * c - b * b;
+    if (!(det > 0)) break;
+    const double du = (c * pu.dot(r) - b * pv.dot(r)) / det, dv = (a * pv.dot(r) - b * pu.dot(r)) / det;
+    w = {w[0] - du - dv, w[1] + du, w[2] + dv};
+  }
+  return w;
+}
+
 P3 SurfaceProjector::project(const P3& x, int& triangle) const {
   // The walk leaves across the edge opposite the most negative coordinate; on a closed surface
-  // it ends within a few steps of a nearby start (a bound keeps a cycle from looping).
+  // it ends within a few steps of a nearby start (a bound keeps a cycle, as across a sharp edge
+  // whose faces' feet each lie over the other, from looping: the least outside is taken).
   int best = triangle;
   P3 best_w{};
   double best_outside = std::numeric_limits<double>::infinity();
   for (int step = 0, t = triangle; step < 64 && t >= 0; ++step) {
-    const auto& f = triangles_[t];
-    const P3 w = planar_barycentric(vec(x), vec(vertices_[f[0]]), vec(vertices_[f[1]]), vec(vertices_[f[2]]));
+    const P3 w = foot(t, x);
     const int worst = static_cast<int>(std::min_element(w.begin(), w.end()) - w.begin());
     if (-w[worst] < best_outside) best = t, best_w = w, best_outside = -w[worst];
     if (w[worst] >= -1e-12) break;
@@ -192,9 +214,13 @@ class Refinement {
     };
     if (!(angle(c, p, q) + angle(d, q, p) > std::numbers::pi * (1 + 1e-9))) return false;
     const V3 nf = normal(s_.facets[f]).normalized(), ng = normal(vg).normalized();
+    // Convex seen along the mean normal: each diagonal separates the other's ends.
+    const V3 n = nf + ng;
+    auto side = [&](int from, int to, int x) { return (point(to) - point(from)).cross(point(x) - point(from)).dot(n); };
+    if (!(side(p, q, c) * side(p, q, d) < 0) || !(side(c, d, p) * side(c, d, q) < 0)) return false;
     const std::array<int, 3> new_f{p, d, c}, new_g{d, q, c};
-    for (const auto& n : {normal(new_f).normalized(), normal(new_g).normalized()})
-      if (!(n.dot(nf) > 0.5) || !(n.dot(ng) > 0.5)) return false;
+    for (const auto& m : {normal(new_f).normalized(), normal(new_g).normalized()})
+      if (!(m.dot(nf) > 0.5) || !(m.dot(ng) > 0.5)) return false;
     s_.facets[f] = new_f, s_.facets[g] = new_g;
     edges_.erase(key);
     replace(q, c, f, g), replace(p, d, g, f);
@@ -225,16 +251,37 @@ class Refinement {
 
   // The facets around a point keep their side (within 60 degrees of their old normals, a tenth
   // of their size's area at least unless already smaller); `changed` gives a facet's new corners.
+  // Seen along the point's normal (their sum) they stay unfolded, a star about the point.
   template <class Changed>
   bool keeps_shape(const std::vector<int>& facets, const std::vector<V3>& old_normals, double size_m, Changed changed) const {
+    V3 star = V3::Zero();
+    for (const V3& n : old_normals) star += n.normalized();
+    star.normalize();
     for (std::size_t i = 0; i < facets.size(); ++i) {
       std::array<int, 3> w = s_.facets[facets[i]];
       if (!changed(w)) continue;
       const V3 n = normal(w);
-      if (!(n.normalized().dot(old_normals[i].normalized()) > 0.5)) return false;
+      if (!(n.normalized().dot(old_normals[i].normalized()) > 0.5) || !(n.normalized().dot(star) > 0.2)) return false;
       if (!(n.norm() > std::min(0.1 * size_m * size_m, old_normals[i].norm()))) return false;
     }
     return true;
+  }
+
+  // Merging v into u keeps the surface manifold only if their common neighbours are the two
+  // points across edge (v, u) (else two edges, or facets, become one).
+  bool link_condition(int v, int u, const std::vector<std::vector<int>>& around) const {
+    std::vector<int> of_v, of_u;
+    for (int f : around[v])
+      for (int w : s_.facets[f]) of_v.push_back(w);
+    for (int f : around[u])
+      for (int w : s_.facets[f]) of_u.push_back(w);
+    for (auto* list : {&of_v, &of_u}) {
+      std::sort(list->begin(), list->end());
+      list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
+    std::vector<int> common;
+    std::set_intersection(of_v.begin(), of_v.end(), of_u.begin(), of_u.end(), std::back_inserter(common));
+    return common.size() == 4;  // v, u and the two across
   }
 
   int merge_close_points() {
@@ -257,7 +304,7 @@ class Refinement {
           for (int& x : w) x = x == v ? u : x;
           return true;
         };
-        if (!keeps_shape(around[v], old_normals, s_.size_m[v], onto_u)) continue;
+        if (!link_condition(v, u, around) || !keeps_shape(around[v], old_normals, s_.size_m[v], onto_u)) continue;
         for (int f : around[v]) {
           for (int x : s_.facets[f]) touched[x] = true;
           if (!onto_u(s_.facets[f])) dead[f] = true;
