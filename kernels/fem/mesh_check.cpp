@@ -23,7 +23,9 @@ std::string edge_name(int a, int b) {
 }
 
 P3 sub(const P3& a, const P3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-P3 cross(const P3& a, const P3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+P3 cross(const P3& a, const P3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
 double norm(const P3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
 double box_diagonal_m(const std::vector<P3>& vertices) {
@@ -60,8 +62,10 @@ std::vector<int> surface_parts(const std::vector<std::array<int, 3>>& triangles)
 
 }  // namespace
 
-std::string surface_topology_problem(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
-  if (triangles.size() < 4) return "the surface has " + std::to_string(triangles.size()) + " triangles; a closed one needs 4";
+std::string surface_topology_problem(const std::vector<P3>& vertices,
+                                     const std::vector<std::array<int, 3>>& triangles) {
+  if (triangles.size() < 4)
+    return "the surface has " + std::to_string(triangles.size()) + " triangles; a closed one needs 4";
   for (std::size_t v = 0; v < vertices.size(); ++v)
     for (double c : vertices[v])
       if (!std::isfinite(c)) return "vertex " + std::to_string(v) + " has a coordinate that is not finite";
@@ -84,13 +88,14 @@ std::string surface_topology_problem(const std::vector<P3>& vertices, const std:
       if (forward + backward == 1) return "the surface is open: " + where + " bounds one triangle only";
       if (forward + backward > 2)
         return "the surface is not manifold: " + where + " bounds " + std::to_string(forward + backward) + " triangles";
-      if (forward != 1) return "the triangles are not consistently oriented at " + where + " (two run along it the same way)";
+      if (forward != 1)
+        return "the triangles are not consistently oriented at " + where + " (two run along it the same way)";
     }
   return "";
 }
 
-std::string degenerate_triangle_problem(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
-                                        double relative_height) {
+std::string degenerate_triangle_problem(const std::vector<P3>& vertices,
+                                        const std::vector<std::array<int, 3>>& triangles, double relative_height) {
   const double floor_m = relative_height * box_diagonal_m(vertices);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto& f = triangles[t];
@@ -99,15 +104,17 @@ std::string degenerate_triangle_problem(const std::vector<P3>& vertices, const s
     const double twice_area = norm(cross(sub(vertices[f[1]], vertices[f[0]]), sub(vertices[f[2]], vertices[f[0]])));
     if (!(twice_area > floor_m * longest)) {
       char reason[200];
-      std::snprintf(reason, sizeof reason, "triangle %zu (vertices %d, %d, %d) is degenerate: area %.3g m^2, height %.3g m",
-                    t, f[0], f[1], f[2], 0.5 * twice_area, longest > 0 ? twice_area / longest : 0.0);
+      std::snprintf(reason, sizeof reason,
+                    "triangle %zu (vertices %d, %d, %d) is degenerate: area %.3g m^2, height %.3g m", t, f[0], f[1],
+                    f[2], 0.5 * twice_area, longest > 0 ? twice_area / longest : 0.0);
       return reason;
     }
   }
   return "";
 }
 
-std::string self_intersection_problem(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+std::string self_intersection_problem(const std::vector<P3>& vertices,
+                                      const std::vector<std::array<int, 3>>& triangles) {
   // TetGen tetrahedralizes every point it is given: only the used ones go in.
   std::vector<int> index(vertices.size(), -1), input;
   std::vector<P3> used;
@@ -116,7 +123,8 @@ std::string self_intersection_problem(const std::vector<P3>& vertices, const std
   for (const auto& f : triangles) {
     std::array<int, 3> g{};
     for (int k = 0; k < 3; ++k) {
-      if (index[f[k]] < 0) index[f[k]] = static_cast<int>(used.size()), used.push_back(vertices[f[k]]), input.push_back(f[k]);
+      if (index[f[k]] < 0)
+        index[f[k]] = static_cast<int>(used.size()), used.push_back(vertices[f[k]]), input.push_back(f[k]);
       g[k] = index[f[k]];
     }
     facets.push_back(g);
@@ -138,14 +146,18 @@ std::string self_intersection_problem(const std::vector<P3>& vertices, const std
     if (f == first) break;
   }
   char reason[200];
-  std::snprintf(reason, sizeof reason, "the surface intersects itself: %d triangles cross another, triangle %zu (vertices %d, %d, %d) among them",
-                found.intersecting_faces, t, first[0], first[1], first[2]);
+  std::snprintf(
+      reason, sizeof reason,
+      "the surface intersects itself: %d triangles cross another, triangle %zu (vertices %d, %d, %d) among them",
+      found.intersecting_faces, t, first[0], first[1], first[2]);
   return reason;
 }
 
 double check_object_surface(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
-  if (std::string problem = surface_topology_problem(vertices, triangles); !problem.empty()) throw SurfaceError(problem);
-  if (std::string problem = degenerate_triangle_problem(vertices, triangles); !problem.empty()) throw SurfaceError(problem);
+  if (std::string problem = surface_topology_problem(vertices, triangles); !problem.empty())
+    throw SurfaceError(problem);
+  if (std::string problem = degenerate_triangle_problem(vertices, triangles); !problem.empty())
+    throw SurfaceError(problem);
   const std::vector<int> part = surface_parts(triangles);
   std::unordered_map<int, double> six_volume_of;
   std::vector<int> roots;  // in order of first triangle: deterministic messages
@@ -158,8 +170,10 @@ double check_object_surface(const std::vector<P3>& vertices, const std::vector<s
   }
   char reason[240];
   if (!(six_total > 0)) {
-    std::snprintf(reason, sizeof reason, "the faces point inward: the enclosed volume is %.6g m^3 (triangles clockwise seen "
-                  "from outside; reverse their winding)", six_total / 6);
+    std::snprintf(reason, sizeof reason,
+                  "the faces point inward: the enclosed volume is %.6g m^3 (triangles clockwise seen "
+                  "from outside; reverse their winding)",
+                  six_total / 6);
     throw SurfaceError(reason);
   }
   // Crossing first: two overlapping bodies are told by the crossing, the truer reason.
@@ -168,18 +182,22 @@ double check_object_surface(const std::vector<P3>& vertices, const std::vector<s
   int bodies = 0;
   for (int r : roots) bodies += six_volume_of[r] > 0;
   if (bodies > 1) {
-    std::snprintf(reason, sizeof reason, "the surface has %d separate parts that each enclose a solid (the one with triangle 0 "
-                  "among them): one object is one solid", bodies);
+    std::snprintf(reason, sizeof reason,
+                  "the surface has %d separate parts that each enclose a solid (the one with triangle 0 "
+                  "among them): one object is one solid",
+                  bodies);
     throw SurfaceError(reason);
   }
   return six_total / 6;
 }
 
-std::string implausible_scale(const std::vector<P3>& vertices, double volume_m3, double rho_kg_m3, const ScaleLimits& limits) {
+std::string implausible_scale(const std::vector<P3>& vertices, double volume_m3, double rho_kg_m3,
+                              const ScaleLimits& limits) {
   const double size_m = vertices.empty() ? 0 : box_diagonal_m(vertices), mass_kg = volume_m3 * rho_kg_m3;
   if (!(size_m > limits.max_size_m) && !(mass_kg > limits.max_mass_kg)) return "";
   char reason[300];
-  std::snprintf(reason, sizeof reason, "the object is %.3g m across (bounding-box diagonal) and weighs %.3g kg at %.4g kg/m^3, "
+  std::snprintf(reason, sizeof reason,
+                "the object is %.3g m across (bounding-box diagonal) and weighs %.3g kg at %.4g kg/m^3, "
                 "over the plausible %.3g m or %.3g kg: is the mesh in millimetres rather than metres?",
                 size_m, mass_kg, rho_kg_m3, limits.max_size_m, limits.max_mass_kg);
   return reason;

@@ -53,7 +53,7 @@ struct ScaleLimits {
   double max_size_m = 5;
   double max_mass_kg = 1000;
 };
-std::string implausible_scale(const std::vector<std::array<double, 3>>& vertices_m, double volume_m3,
-                              double rho_kg_m3, const ScaleLimits& limits = {});
+std::string implausible_scale(const std::vector<std::array<double, 3>>& vertices_m, double volume_m3, double rho_kg_m3,
+                              const ScaleLimits& limits = {});
 
 }  // namespace clatter::kernels::fem

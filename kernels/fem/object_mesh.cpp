@@ -15,7 +15,6 @@
 #include "kernels/fem/object_mesh.hpp"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -35,9 +34,8 @@ namespace {
 using P3 = std::array<double, 3>;
 using Face = std::array<int, 3>;
 
-
-LinearMesh run_tetgen(const RefinedSurface& s, const std::vector<P3>& inner, const ObjectMeshSettings& settings, double h_m,
-                      std::vector<Face>& faces, std::vector<int>& face_facet) {
+LinearMesh run_tetgen(const RefinedSurface& s, const std::vector<P3>& inner, const ObjectMeshSettings& settings,
+                      double h_m, std::vector<Face>& faces, std::vector<int>& face_facet) {
   std::vector<P3> points = s.points_m;
   points.insert(points.end(), inner.begin(), inner.end());
   char switches[128];
@@ -53,7 +51,8 @@ LinearMesh run_tetgen(const RefinedSurface& s, const std::vector<P3>& inner, con
     throw MeshError("object mesh", e.what());
   }
   if (fill.failure_code != 0)
-    throw MeshError("object mesh", "TetGen failed (code " + std::to_string(fill.failure_code) + ") with switches " + switches);
+    throw MeshError("object mesh",
+                    "TetGen failed (code " + std::to_string(fill.failure_code) + ") with switches " + switches);
   if (fill.mesh.tets.empty()) throw MeshError("object mesh", "TetGen returned no tetrahedra");
   if (fill.face_facet.size() != fill.faces.size()) throw MeshError("object mesh", "TetGen wrote no facet markers");
   for (std::size_t v = 0; v < s.points_m.size(); ++v)
@@ -103,7 +102,8 @@ ObjectMesh quadratic_mesh(LinearMesh& m, const RefinedSurface& s, const SurfaceP
     if (it == facet_of.end() || it->second < 0) throw MeshError("object mesh", "a boundary face TetGen did not mark");
     near.push_back(s.near_triangle[it->second]);
     for (int v : f)  // a point TetGen added on the surface (-Y allows none, but should it): onto it
-      if (static_cast<std::size_t>(v) >= s.points_m.size() && nodes[v] == m.points[v]) nodes[v] = projector.project(nodes[v], near.back());
+      if (static_cast<std::size_t>(v) >= s.points_m.size() && nodes[v] == m.points[v])
+        nodes[v] = projector.project(nodes[v], near.back());
   }
   ObjectMesh out;
   std::unordered_map<std::int64_t, int> mid;  // numbered in order of first use: deterministic
@@ -193,8 +193,8 @@ std::vector<P3> points_under_folds(const ObjectMesh& out, const EllipsoidMeshBou
 
 // TetGen's fill of the refined surface and the quadratic mesh on it, with points added under
 // folded elements for a few rounds (the mesh of the last round is returned either way).
-ObjectMesh mesh_refined(const RefinedSurface& refined, const SurfaceProjector& projector, const ObjectMeshSettings& settings,
-                        double h_m, const EllipsoidMeshBounds& bounds) {
+ObjectMesh mesh_refined(const RefinedSurface& refined, const SurfaceProjector& projector,
+                        const ObjectMeshSettings& settings, double h_m, const EllipsoidMeshBounds& bounds) {
   std::vector<P3> inner;
   for (int round = 0;; ++round) {
     std::vector<Face> faces;
@@ -211,11 +211,12 @@ ObjectMesh mesh_refined(const RefinedSurface& refined, const SurfaceProjector& p
 
 }  // namespace
 
-ObjectMesh mesh_object(const std::vector<P3>& vertices, const std::vector<Face>& triangles, const ObjectMeshSettings& settings,
-                       const EllipsoidMeshBounds& bounds) {
-  if (!(settings.edge_length_m > 0) || !std::isfinite(settings.edge_length_m) || settings.elements_through_thickness < 1 ||
-      !(settings.smooth_dihedral_deg >= 0) || settings.retries < 0)
-    throw std::invalid_argument("mesh_object: need edge length > 0, elements through thickness >= 1, smooth angle >= 0, retries >= 0");
+ObjectMesh mesh_object(const std::vector<P3>& vertices, const std::vector<Face>& triangles,
+                       const ObjectMeshSettings& settings, const EllipsoidMeshBounds& bounds) {
+  if (!(settings.edge_length_m > 0) || !std::isfinite(settings.edge_length_m) ||
+      settings.elements_through_thickness < 1 || !(settings.smooth_dihedral_deg >= 0) || settings.retries < 0)
+    throw std::invalid_argument(
+        "mesh_object: need edge length > 0, elements through thickness >= 1, smooth angle >= 0, retries >= 0");
   check_object_surface(vertices, triangles);
   const SmoothSurface surface(vertices, triangles, settings.smooth_dihedral_deg);
   const SurfaceProjector projector(vertices, triangles, surface);
@@ -233,7 +234,8 @@ ObjectMesh mesh_object(const std::vector<P3>& vertices, const std::vector<Face>&
       size[v] = scale * std::min(settings.edge_length_m, vertex_thickness[v] / settings.elements_through_thickness);
     const RefinedSurface refined = refine_surface(vertices, triangles, projector, size, settings.max_surface_triangles);
     ObjectMesh out = mesh_refined(refined, projector, settings, scale * settings.edge_length_m, bounds);
-    out.quality.edge_length_m = scale * std::min(settings.edge_length_m, min_thickness / settings.elements_through_thickness);
+    out.quality.edge_length_m =
+        scale * std::min(settings.edge_length_m, min_thickness / settings.elements_through_thickness);
     out.min_thickness_m = min_thickness;
     const std::string problem = bounds_problem(out.quality, bounds);
     if (problem.empty()) return out;

@@ -1,11 +1,9 @@
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
 #include <limits>
-#include <map>
 #include <numbers>
 #include <unordered_map>
 #include <utility>
@@ -14,83 +12,16 @@
 #include "kernels/fem/object_parts.hpp"
 
 namespace clatter::kernels::fem {
-namespace {
-
-using P3 = std::array<double, 3>;
-using V3 = Eigen::Vector3d;
-V3 vec(const P3& p) { return {p[0], p[1], p[2]}; }
-
-// Barycentric coordinates of x projected into the plane of (a, b, c), outside it too.
-P3 planar_barycentric(const V3& x, const V3& a, const V3& b, const V3& c) {
-  const V3 v0 = b - a, v1 = c - a, v2 = x - a;
-  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
-  const double det = d00 * d11 - d01 * d01, w1 = (d11 * d20 - d01 * d21) / det, w2 = (d00 * d21 - d01 * d20) / det;
-  return {1 - w1 - w2, w1, w2};
-}
-
-}  // namespace
 
 std::int64_t undirected_edge_key(int a, int b) {
   return static_cast<std::int64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
 }
 
-SurfaceProjector::SurfaceProjector(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
-                                   const SmoothSurface& surface)
-    : vertices_(vertices), triangles_(triangles), surface_(surface), across_(triangles.size(), {-1, -1, -1}) {
-  std::unordered_map<std::int64_t, std::pair<int, int>> first;  // edge -> (triangle, edge index)
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const auto [it, fresh] = first.try_emplace(undirected_edge_key(triangles[t][k], triangles[t][(k + 1) % 3]),
-                                                 static_cast<int>(t), k);
-      if (fresh) continue;
-      across_[t][k] = it->second.first;
-      across_[it->second.first][it->second.second] = static_cast<int>(t);
-    }
-}
-
-// The foot of x on triangle t's patch: from the flat triangle's barycentric coordinates, Gauss-
-// Newton on |x - P(b)|^2 (derivatives by central differences: they steer the steps only, the
-// point returned is P(b) itself, on the patch). Coordinates may leave [0, 1]: x is then over a
-// neighbour. Projecting onto the flat triangles alone would leave gaps over convex corners, where
-// a point above the flat faces (as the patches are) is over none of them.
-P3 SurfaceProjector::foot(int t, const P3& x) const {
-  const auto& f = triangles_[t];
-  P3 w = planar_barycentric(vec(x), vec(vertices_[f[0]]), vec(vertices_[f[1]]), vec(vertices_[f[2]]));
-  constexpr double kStep = 1e-5;
-  for (int iteration = 0; iteration < 4; ++iteration) {
-    auto at = [&](double du, double dv) { return vec(surface_.point(t, {w[0] - du - dv, w[1] + du, w[2] + dv})); };
-    const V3 p = at(0, 0), pu = (at(kStep, 0) - at(-kStep, 0)) / (2 * kStep), pv = (at(0, kStep) - at(0, -kStep)) / (2 * kStep);
-    const V3 r = vec(x) - p;
-    const double a = pu.dot(pu), b = pu.dot(pv), c = pv.dot(pv), det = a * c - b * b;
-    if (!(det > 0)) break;
-    const double du = (c * pu.dot(r) - b * pv.dot(r)) / det, dv = (a * pv.dot(r) - b * pu.dot(r)) / det;
-    w = {w[0] - du - dv, w[1] + du, w[2] + dv};
-  }
-  return w;
-}
-
-P3 SurfaceProjector::project(const P3& x, int& triangle) const {
-  // The walk leaves across the edge opposite the most negative coordinate; on a closed surface
-  // it ends within a few steps of a nearby start (a bound keeps a cycle, as across a sharp edge
-  // whose faces' feet each lie over the other, from looping: the least outside is taken).
-  int best = triangle;
-  P3 best_w{};
-  double best_outside = std::numeric_limits<double>::infinity();
-  for (int step = 0, t = triangle; step < 64 && t >= 0; ++step) {
-    const P3 w = foot(t, x);
-    const int worst = static_cast<int>(std::min_element(w.begin(), w.end()) - w.begin());
-    if (-w[worst] < best_outside) best = t, best_w = w, best_outside = -w[worst];
-    if (w[worst] >= -1e-12) break;
-    t = across_[t][(worst + 1) % 3];  // corner `worst` is opposite edge worst + 1
-  }
-  double sum = 0;
-  for (double& c : best_w) sum += (c = std::max(c, 0.0));
-  for (double& c : best_w) c /= sum;
-  triangle = best;
-  return surface_.point(best, best_w);
-}
-
 namespace {
+
+using P3 = std::array<double, 3>;
+using V3 = Eigen::Vector3d;
+V3 vec(const P3& p) { return {p[0], p[1], p[2]}; }
 
 class Refinement {
  public:
@@ -128,7 +59,9 @@ class Refinement {
   }
 
  private:
-  static std::pair<int, int> ends(std::int64_t key) { return {static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffff)}; }
+  static std::pair<int, int> ends(std::int64_t key) {
+    return {static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffff)};
+  }
   V3 point(int v) const { return vec(s_.points_m[v]); }
   double length(int a, int b) const { return (point(a) - point(b)).norm(); }
   V3 normal(const std::array<int, 3>& f) const { return (point(f[1]) - point(f[0])).cross(point(f[2]) - point(f[0])); }
@@ -253,7 +186,8 @@ class Refinement {
   // of their size's area at least unless already smaller); `changed` gives a facet's new corners.
   // Seen along the point's normal (their sum) they stay unfolded, a star about the point.
   template <class Changed>
-  bool keeps_shape(const std::vector<int>& facets, const std::vector<V3>& old_normals, double size_m, Changed changed) const {
+  bool keeps_shape(const std::vector<int>& facets, const std::vector<V3>& old_normals, double size_m,
+                   Changed changed) const {
     V3 star = V3::Zero();
     for (const V3& n : old_normals) star += n.normalized();
     star.normalize();
@@ -336,7 +270,8 @@ class Refinement {
       kept.facets.push_back(w);
       kept.near_triangle.push_back(s_.near_triangle[f]);
     }
-    for (std::int64_t key : s_.sharp_edges) kept.sharp_edges.insert(undirected_edge_key(index[ends(key).first], index[ends(key).second]));
+    for (std::int64_t key : s_.sharp_edges)
+      kept.sharp_edges.insert(undirected_edge_key(index[ends(key).first], index[ends(key).second]));
     s_ = std::move(kept);
     remake_edges();
   }
@@ -364,7 +299,8 @@ class Refinement {
       s_.points_m[v] = projector_.project({mean(0), mean(1), mean(2)}, near);
       double after = std::numeric_limits<double>::infinity();
       for (int f : around[v]) after = std::min(after, normal(s_.facets[f]).norm());
-      if (!(after >= before) || !keeps_shape(around[v], old_normals, 0.0, [](const std::array<int, 3>&) { return true; }))
+      if (!(after >= before) ||
+          !keeps_shape(around[v], old_normals, 0.0, [](const std::array<int, 3>&) { return true; }))
         s_.points_m[v] = old;
     }
   }
@@ -378,7 +314,8 @@ class Refinement {
 }  // namespace
 
 RefinedSurface refine_surface(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
-                              const SurfaceProjector& projector, const std::vector<double>& vertex_size_m, std::int64_t max_facets) {
+                              const SurfaceProjector& projector, const std::vector<double>& vertex_size_m,
+                              std::int64_t max_facets) {
   RefinedSurface s;
   s.points_m = vertices;
   s.size_m = vertex_size_m;

@@ -1,13 +1,14 @@
 #include "kernels/fem/smooth_surface.hpp"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <unordered_map>
 #include <utility>
 
 namespace clatter::kernels::fem {
@@ -35,6 +36,18 @@ class Sectors {
 
 int corner_of(const std::array<int, 3>& f, int v) { return f[0] == v ? 0 : f[1] == v ? 1 : 2; }
 
+std::int64_t edge_key(int a, int b) {
+  return static_cast<std::int64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
+}
+
+// Barycentric coordinates of x projected into the plane of (a, b, c), outside it too.
+P3 planar_barycentric(const V3& x, const V3& a, const V3& b, const V3& c) {
+  const V3 v0 = b - a, v1 = c - a, v2 = x - a;
+  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
+  const double det = d00 * d11 - d01 * d01, w1 = (d11 * d20 - d01 * d21) / det, w2 = (d00 * d21 - d01 * d20) / det;
+  return {1 - w1 - w2, w1, w2};
+}
+
 }  // namespace
 
 SmoothSurface::SmoothSurface(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
@@ -43,14 +56,16 @@ SmoothSurface::SmoothSurface(const std::vector<P3>& vertices, const std::vector<
   std::vector<V3> normal(nt);
   for (std::size_t t = 0; t < nt; ++t) {
     const auto& f = triangles[t];
-    normal[t] = (vec(vertices[f[1]]) - vec(vertices[f[0]])).cross(vec(vertices[f[2]]) - vec(vertices[f[0]])).normalized();
+    normal[t] =
+        (vec(vertices[f[1]]) - vec(vertices[f[0]])).cross(vec(vertices[f[2]]) - vec(vertices[f[0]])).normalized();
   }
   // Each undirected edge with its two triangles (the surface is closed and manifold).
   std::map<std::pair<int, int>, std::array<int, 2>> edge_faces;
   for (std::size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
       const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
-      auto [it, fresh] = edge_faces.try_emplace({std::min(a, b), std::max(a, b)}, std::array<int, 2>{static_cast<int>(t), -1});
+      auto [it, fresh] =
+          edge_faces.try_emplace({std::min(a, b), std::max(a, b)}, std::array<int, 2>{static_cast<int>(t), -1});
       if (!fresh) it->second[1] = static_cast<int>(t);
     }
   const double cos_limit = std::cos(smooth_dihedral_deg * std::numbers::pi / 180);
@@ -83,7 +98,8 @@ SmoothSurface::SmoothSurface(const std::vector<P3>& vertices, const std::vector<
   for (std::size_t t = 0; t < nt; ++t) {
     const auto& f = triangles[t];
     V3 p[3], n[3];
-    for (int k = 0; k < 3; ++k) p[k] = vec(vertices[f[k]]), n[k] = sum[sectors.root(static_cast<int>(3 * t) + k)].normalized();
+    for (int k = 0; k < 3; ++k)
+      p[k] = vec(vertices[f[k]]), n[k] = sum[sectors.root(static_cast<int>(3 * t) + k)].normalized();
     // Edge control point near corner i towards j: the third point projected into i's tangent plane.
     auto edge_point = [&](int i, int j, int k_edge) {
       const double w = sharp_[t][k_edge] ? 0.0 : (p[j] - p[i]).dot(n[i]);
@@ -92,8 +108,8 @@ SmoothSurface::SmoothSurface(const std::vector<P3>& vertices, const std::vector<
     const V3 b210 = edge_point(0, 1, 0), b120 = edge_point(1, 0, 0), b021 = edge_point(1, 2, 1),
              b012 = edge_point(2, 1, 1), b102 = edge_point(2, 0, 2), b201 = edge_point(0, 2, 2);
     const V3 e = (b210 + b120 + b021 + b012 + b102 + b201) / 6, v = (p[0] + p[1] + p[2]) / 3;
-    control_m_[t] = {arr(p[0]), arr(p[1]), arr(p[2]), arr(b210), arr(b120), arr(b021), arr(b012), arr(b102), arr(b201),
-                     arr(e + (e - v) / 2)};
+    control_m_[t] = {arr(p[0]), arr(p[1]), arr(p[2]), arr(b210), arr(b120),
+                     arr(b021), arr(b012), arr(b102), arr(b201), arr(e + (e - v) / 2)};
   }
 }
 
@@ -106,6 +122,63 @@ P3 SmoothSurface::point(int t, const P3& b) const {
   for (int i = 0; i < 10; ++i)
     for (int k = 0; k < 3; ++k) x[k] += weight[i] * c[i][k];
   return x;
+}
+
+SurfaceProjector::SurfaceProjector(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                                   const SmoothSurface& surface)
+    : vertices_(vertices), triangles_(triangles), surface_(surface), across_(triangles.size(), {-1, -1, -1}) {
+  std::unordered_map<std::int64_t, std::pair<int, int>> first;  // edge -> (triangle, edge index)
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto [it, fresh] =
+          first.try_emplace(edge_key(triangles[t][k], triangles[t][(k + 1) % 3]), static_cast<int>(t), k);
+      if (fresh) continue;
+      across_[t][k] = it->second.first;
+      across_[it->second.first][it->second.second] = static_cast<int>(t);
+    }
+}
+
+// The foot of x on triangle t's patch: from the flat triangle's barycentric coordinates, Gauss-
+// Newton on |x - P(b)|^2 (derivatives by central differences: they steer the steps only, the
+// point returned is P(b) itself, on the patch). Coordinates may leave [0, 1]: x is then over a
+// neighbour. Projecting onto the flat triangles alone would leave gaps over convex corners, where
+// a point above the flat faces (as the patches are) is over none of them.
+P3 SurfaceProjector::foot(int t, const P3& x) const {
+  const auto& f = triangles_[t];
+  P3 w = planar_barycentric(vec(x), vec(vertices_[f[0]]), vec(vertices_[f[1]]), vec(vertices_[f[2]]));
+  constexpr double kStep = 1e-5;
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    auto at = [&](double du, double dv) { return vec(surface_.point(t, {w[0] - du - dv, w[1] + du, w[2] + dv})); };
+    const V3 p = at(0, 0), pu = (at(kStep, 0) - at(-kStep, 0)) / (2 * kStep),
+             pv = (at(0, kStep) - at(0, -kStep)) / (2 * kStep);
+    const V3 r = vec(x) - p;
+    const double a = pu.dot(pu), b = pu.dot(pv), c = pv.dot(pv), det = a * c - b * b;
+    if (!(det > 0)) break;
+    const double du = (c * pu.dot(r) - b * pv.dot(r)) / det, dv = (a * pv.dot(r) - b * pu.dot(r)) / det;
+    w = {w[0] - du - dv, w[1] + du, w[2] + dv};
+  }
+  return w;
+}
+
+P3 SurfaceProjector::project(const P3& x, int& triangle) const {
+  // The walk leaves across the edge opposite the most negative coordinate; on a closed surface
+  // it ends within a few steps of a nearby start (a bound keeps a cycle, as across a sharp edge
+  // whose faces' feet each lie over the other, from looping: the least outside is taken).
+  int best = triangle;
+  P3 best_w{};
+  double best_outside = std::numeric_limits<double>::infinity();
+  for (int step = 0, t = triangle; step < 64 && t >= 0; ++step) {
+    const P3 w = foot(t, x);
+    const int worst = static_cast<int>(std::min_element(w.begin(), w.end()) - w.begin());
+    if (-w[worst] < best_outside) best = t, best_w = w, best_outside = -w[worst];
+    if (w[worst] >= -1e-12) break;
+    t = across_[t][(worst + 1) % 3];  // corner `worst` is opposite edge worst + 1
+  }
+  double sum = 0;
+  for (double& c : best_w) sum += (c = std::max(c, 0.0));
+  for (double& c : best_w) c /= sum;
+  triangle = best;
+  return surface_.point(best, best_w);
 }
 
 namespace {
@@ -127,7 +200,8 @@ struct Bvh {
     Node node;
     node.lo = V3::Constant(std::numeric_limits<double>::infinity()), node.hi = -node.lo;
     for (int i = first; i < first + count; ++i)
-      for (int k = 0; k < 3; ++k) node.lo = node.lo.cwiseMin(corner(order[i], k)), node.hi = node.hi.cwiseMax(corner(order[i], k));
+      for (int k = 0; k < 3; ++k)
+        node.lo = node.lo.cwiseMin(corner(order[i], k)), node.hi = node.hi.cwiseMax(corner(order[i], k));
     const int index = static_cast<int>(nodes.size());
     nodes.push_back(node);
     if (count <= 4) {
@@ -193,7 +267,8 @@ struct Bvh {
 
 }  // namespace
 
-std::vector<double> thickness_under_triangles_m(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+std::vector<double> thickness_under_triangles_m(const std::vector<P3>& vertices,
+                                                const std::vector<std::array<int, 3>>& triangles) {
   const int nt = static_cast<int>(triangles.size());
   Bvh tree;
   tree.vertices = &vertices, tree.triangles = &triangles;

@@ -31,6 +31,25 @@ class SmoothSurface {
   std::int64_t sharp_edges_ = 0, edges_ = 0;
 };
 
+// Points onto the smooth surface: x goes to its foot (nearest point) on the patch of the input
+// triangle it lies over, found by walking from a nearby triangle across the edge x lies beyond.
+// Points on a flat patch or a straight (sharp) edge stay where they are.
+class SurfaceProjector {
+ public:
+  SurfaceProjector(const std::vector<std::array<double, 3>>& vertices_m,
+                   const std::vector<std::array<int, 3>>& triangles, const SmoothSurface& surface);
+  // `triangle`: where the walk starts; on return, the triangle x went to.
+  std::array<double, 3> project(const std::array<double, 3>& x_m, int& triangle) const;
+  const SmoothSurface& surface() const { return surface_; }
+
+ private:
+  std::array<double, 3> foot(int t, const std::array<double, 3>& x_m) const;
+  const std::vector<std::array<double, 3>>& vertices_;
+  const std::vector<std::array<int, 3>>& triangles_;
+  const SmoothSurface& surface_;
+  std::vector<std::array<int, 3>> across_;  // the triangle across edge k (corners k, k+1)
+};
+
 // The body's thickness under each triangle: the distance from its centroid, along the inward
 // normal, to the nearest other triangle the ray meets (a bounding-volume tree: n log n).
 std::vector<double> thickness_under_triangles_m(const std::vector<std::array<double, 3>>& vertices_m,

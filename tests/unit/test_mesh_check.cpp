@@ -22,10 +22,10 @@ std::string refusal(const TriangleMesh& m) {
   return "";
 }
 
-#define EXPECT_REASON(mesh, text)                                                          \
-  do {                                                                                     \
-    const std::string why = refusal(mesh);                                                 \
-    EXPECT_NE(why.find(text), std::string::npos) << "reason: '" << why << "'";             \
+#define EXPECT_REASON(mesh, text)                                              \
+  do {                                                                         \
+    const std::string why = refusal(mesh);                                     \
+    EXPECT_NE(why.find(text), std::string::npos) << "reason: '" << why << "'"; \
   } while (0)
 
 // Two meshes as one, vertices at the same place welded into one.
@@ -79,7 +79,8 @@ TEST(MeshCheck, RefusesTwoCubesSharingAnEdge) {
 
 TEST(MeshCheck, RefusesSelfIntersection) {
   // Two cubes that overlap: each closed, together crossing.
-  const TriangleMesh pair = weld(clatter::test::box({1, 1, 1}), shifted(clatter::test::box({1, 1, 1}), {0.5, 0.4, 0.3}));
+  const TriangleMesh pair =
+      weld(clatter::test::box({1, 1, 1}), shifted(clatter::test::box({1, 1, 1}), {0.5, 0.4, 0.3}));
   EXPECT_REASON(pair, "intersects itself");
   EXPECT_REASON(pair, "triangle ");
   // One surface: the top face's centre pushed down through the bottom.
@@ -88,7 +89,8 @@ TEST(MeshCheck, RefusesSelfIntersection) {
     if (p[0] == 0.5 && p[1] == 0.5 && p[2] == 1) p[2] = -0.5;
   EXPECT_REASON(poked, "intersects itself");
   // Two separate cubes apart: two bodies.
-  EXPECT_REASON(weld(clatter::test::box({1, 1, 1}), shifted(clatter::test::box({1, 1, 1}), {3, 0, 0})), "2 separate parts");
+  EXPECT_REASON(weld(clatter::test::box({1, 1, 1}), shifted(clatter::test::box({1, 1, 1}), {3, 0, 0})),
+                "2 separate parts");
 }
 
 TEST(MeshCheck, RefusesReversedWinding) {
@@ -107,7 +109,8 @@ TEST(MeshCheck, RefusesAZeroAreaTriangle) {
   const auto t1 = m.triangles[0];
   const int a = t1[0], b = t1[1], c = t1[2];
   const int mid = static_cast<int>(m.vertices_m.size());
-  m.vertices_m.push_back({0.5 * (m.vertices_m[a][0] + m.vertices_m[b][0]), 0.5 * (m.vertices_m[a][1] + m.vertices_m[b][1]),
+  m.vertices_m.push_back({0.5 * (m.vertices_m[a][0] + m.vertices_m[b][0]),
+                          0.5 * (m.vertices_m[a][1] + m.vertices_m[b][1]),
                           0.5 * (m.vertices_m[a][2] + m.vertices_m[b][2])});
   m.triangles[0] = {a, mid, c};
   m.triangles.push_back({mid, b, c});

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -36,10 +35,12 @@ double mesh_volume(const ObjectMesh& m, bool curved) {
 
 // The area of the quadratic boundary faces, by the 7-point degree-5 rule (Dunavant) per face.
 double boundary_area(const ObjectMesh& m) {
-  static constexpr double a1 = 0.059715871789770, b1 = 0.470142064105115, a2 = 0.797426985353087, b2 = 0.101286507323456;
-  static constexpr double points[7][3] = {{1. / 3, 1. / 3, 0.225}, {a1, b1, 0.132394152788506}, {b1, a1, 0.132394152788506},
-                                          {b1, b1, 0.132394152788506}, {a2, b2, 0.125939180544827},
-                                          {b2, a2, 0.125939180544827}, {b2, b2, 0.125939180544827}};
+  static constexpr double a1 = 0.059715871789770, b1 = 0.470142064105115, a2 = 0.797426985353087,
+                          b2 = 0.101286507323456;
+  static constexpr double points[7][3] = {{1. / 3, 1. / 3, 0.225},     {a1, b1, 0.132394152788506},
+                                          {b1, a1, 0.132394152788506}, {b1, b1, 0.132394152788506},
+                                          {a2, b2, 0.125939180544827}, {b2, a2, 0.125939180544827},
+                                          {b2, b2, 0.125939180544827}};
   double area = 0;
   for (const auto& f : m.boundary) {
     Eigen::Matrix<double, 3, 6> x;
@@ -73,12 +74,13 @@ ObjectMesh timed_mesh(const char* what, const TriangleMesh& s, const ObjectMeshS
   ObjectMesh m = mesh_object(s.vertices_m, s.triangles, settings);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const MeshQuality& q = m.quality;
-  std::printf("%s: %zu input triangles, h %.4g m, thickness %.4g m, %lld elements, %lld nodes, %zu boundary faces, "
-              "%lld curved and %lld sharp boundary edges, radius-edge max %.3f, dihedral %.2f..%.2f deg, Jacobian ratio "
-              "min %.3f, %.2f s\n",
-              what, s.triangles.size(), q.edge_length_m, m.min_thickness_m, q.elements, q.nodes, m.boundary.size(),
-              static_cast<long long>(m.curved_edges), static_cast<long long>(m.sharp_edges), q.max_radius_edge,
-              q.min_dihedral_deg, q.max_dihedral_deg, q.min_jacobian_ratio, seconds);
+  std::printf(
+      "%s: %zu input triangles, h %.4g m, thickness %.4g m, %lld elements, %lld nodes, %zu boundary faces, "
+      "%lld curved and %lld sharp boundary edges, radius-edge max %.3f, dihedral %.2f..%.2f deg, Jacobian ratio "
+      "min %.3f, %.2f s\n",
+      what, s.triangles.size(), q.edge_length_m, m.min_thickness_m, q.elements, q.nodes, m.boundary.size(),
+      static_cast<long long>(m.curved_edges), static_cast<long long>(m.sharp_edges), q.max_radius_edge,
+      q.min_dihedral_deg, q.max_dihedral_deg, q.min_jacobian_ratio, seconds);
   return m;
 }
 
@@ -151,7 +153,7 @@ TEST(ObjectMesh, ThinDiskGetsElementsThroughItsThickness) {
   expect_closed(m);
   EXPECT_NEAR(m.min_thickness_m, t, 1e-9);
   EXPECT_NEAR(m.quality.edge_length_m, t / 2, 1e-9);
-  EXPECT_GT(m.sharp_edges, 0);  // the rims
+  EXPECT_GT(m.sharp_edges, 0);   // the rims
   EXPECT_GT(m.curved_edges, 0);  // the side
   // Edges through the thickness: the thickness over the mean edge.
   const double across = t / mean_edge_m(m);
@@ -196,7 +198,8 @@ TEST(ObjectMesh, SlenderRodOfLongThinTriangles) {
   EXPECT_GT(m.curved_edges, 0);
   const double v = mesh_volume(m, true), v_polygon = check_object_surface(rod.vertices_m, rod.triangles);
   const double v_cylinder = std::numbers::pi * r * r * length;
-  std::printf("rod: volume %.6g m^3, input polygon error %.3g, cylinder error %.3g\n", v, v / v_polygon - 1, v / v_cylinder - 1);
+  std::printf("rod: volume %.6g m^3, input polygon error %.3g, cylinder error %.3g\n", v, v / v_polygon - 1,
+              v / v_cylinder - 1);
   EXPECT_GT(v, v_polygon);
   EXPECT_LT(v, v_cylinder);
 }
@@ -226,7 +229,8 @@ TEST(ObjectMesh, SphereVolumeConvergesFasterCurved) {
   }
   for (std::size_t i = 1; i < h.size(); ++i) {
     const double dh = std::log(h[i - 1] / h[i]);
-    const double order_curved = std::log(curved[i - 1] / curved[i]) / dh, order_straight = std::log(straight[i - 1] / straight[i]) / dh;
+    const double order_curved = std::log(curved[i - 1] / curved[i]) / dh,
+                 order_straight = std::log(straight[i - 1] / straight[i]) / dh;
     std::printf("sphere: order curved %.2f, straight %.2f\n", order_curved, order_straight);
     EXPECT_NEAR(order_straight, 2, 0.3);
     EXPECT_GT(order_curved, 3);
@@ -261,7 +265,8 @@ TEST(ObjectMesh, CoarseInputConvergesToItsSmoothSurface) {
   const double r = 0.1;
   const TriangleMesh s = clatter::test::icosphere(r, 1);
   const double exact = smooth_volume_m3(s, 30);
-  std::printf("coarse sphere: smooth surface's volume %.3g of the sphere's off\n", exact / (4.0 / 3 * std::numbers::pi * r * r * r) - 1);
+  std::printf("coarse sphere: smooth surface's volume %.3g of the sphere's off\n",
+              exact / (4.0 / 3 * std::numbers::pi * r * r * r) - 1);
   std::vector<double> h{0.04, 0.02, 0.01}, curved, straight;
   for (double h_m : h) {
     ObjectMeshSettings settings;
@@ -270,12 +275,13 @@ TEST(ObjectMesh, CoarseInputConvergesToItsSmoothSurface) {
     expect_within_bounds(m);
     curved.push_back(std::abs(mesh_volume(m, true) / exact - 1));
     straight.push_back(std::abs(mesh_volume(m, false) / exact - 1));
-    std::printf("coarse sphere: h %.3g m, %lld elements, volume error curved %.3g, straight %.3g\n", h_m, m.quality.elements,
-                curved.back(), straight.back());
+    std::printf("coarse sphere: h %.3g m, %lld elements, volume error curved %.3g, straight %.3g\n", h_m,
+                m.quality.elements, curved.back(), straight.back());
   }
   for (std::size_t i = 1; i < h.size(); ++i) {
     const double dh = std::log(h[i - 1] / h[i]);
-    const double order_curved = std::log(curved[i - 1] / curved[i]) / dh, order_straight = std::log(straight[i - 1] / straight[i]) / dh;
+    const double order_curved = std::log(curved[i - 1] / curved[i]) / dh,
+                 order_straight = std::log(straight[i - 1] / straight[i]) / dh;
     std::printf("coarse sphere: order curved %.2f, straight %.2f\n", order_curved, order_straight);
     EXPECT_NEAR(order_straight, 2, 0.4);
     // O(h^3) at first; then O(h^2) with a 600 times smaller constant: the PN patches meet with a
