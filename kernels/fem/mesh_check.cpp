@@ -191,6 +191,20 @@ double check_object_surface(const std::vector<P3>& vertices, const std::vector<s
   return six_total / 6;
 }
 
+std::vector<int> cavity_triangles(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+  const std::vector<int> part = surface_parts(triangles);
+  std::unordered_map<int, double> six_volume_of;
+  std::vector<int> first;  // each part's first triangle
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    if (six_volume_of.try_emplace(part[t], 0.0).second) first.push_back(static_cast<int>(t));
+    six_volume_of[part[t]] += six_volume(vertices, triangles[t]);
+  }
+  std::vector<int> out;
+  for (int t : first)
+    if (six_volume_of[part[t]] < 0) out.push_back(t);
+  return out;
+}
+
 std::string implausible_scale(const std::vector<P3>& vertices, double volume_m3, double rho_kg_m3,
                               const ScaleLimits& limits) {
   const double size_m = vertices.empty() ? 0 : box_diagonal_m(vertices), mass_kg = volume_m3 * rho_kg_m3;

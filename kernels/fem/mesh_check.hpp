@@ -43,6 +43,11 @@ std::string self_intersection_problem(const std::vector<std::array<double, 3>>& 
 double check_object_surface(const std::vector<std::array<double, 3>>& vertices_m,
                             const std::vector<std::array<int, 3>>& triangles);
 
+// One triangle of each cavity: each connected part of the surface that encloses a negative volume
+// (wound inward, as a hollow body's inner wall is), in order of their first triangle.
+std::vector<int> cavity_triangles(const std::vector<std::array<double, 3>>& vertices_m,
+                                  const std::vector<std::array<int, 3>>& triangles);
+
 // A mesh in millimetres read as metres is 1000 times too large and 1e9 times too heavy. The
 // object bank models objects one hits and hears (cups to crates), so a body over max_size_m
 // across (bounding-box diagonal) or over max_mass_kg is more likely a unit slip than real: 5 m

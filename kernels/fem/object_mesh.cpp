@@ -46,7 +46,7 @@ LinearMesh run_tetgen(const RefinedSurface& s, const std::vector<P3>& inner, con
     // No crossing test first (TetGen's takes 4 times the fill: 16 s on a 65,000-facet disk): the
     // refinement's moves keep every star unfolded, so the refined surface crosses itself only
     // where the input does, which check_object_surface refused.
-    fill = tetgen_fill(points, s.facets, switches, false, true);
+    fill = tetgen_fill(points, s.facets, switches, false, true, s.holes_m);
   } catch (const std::invalid_argument& e) {
     throw MeshError("object mesh", e.what());
   }
@@ -226,13 +226,15 @@ ObjectMesh mesh_object(const std::vector<P3>& vertices, const std::vector<Face>&
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int v : triangles[t]) vertex_thickness[v] = std::min(vertex_thickness[v], thickness[t]);
   const double min_thickness = *std::min_element(thickness.begin(), thickness.end());
+  const std::vector<P3> holes = points_in_cavities_m(vertices, triangles, cavity_triangles(vertices, triangles));
   std::string reasons;
   double scale = 1;  // a retry scales every size, the thickness's too
   for (int attempt = 0; attempt <= settings.retries; ++attempt, scale *= 0.8) {
     std::vector<double> size(vertices.size());
     for (std::size_t v = 0; v < vertices.size(); ++v)
       size[v] = scale * std::min(settings.edge_length_m, vertex_thickness[v] / settings.elements_through_thickness);
-    const RefinedSurface refined = refine_surface(vertices, triangles, projector, size, settings.max_surface_triangles);
+    RefinedSurface refined = refine_surface(vertices, triangles, projector, size, settings.max_surface_triangles);
+    refined.holes_m = holes;
     ObjectMesh out = mesh_refined(refined, projector, settings, scale * settings.edge_length_m, bounds);
     out.quality.edge_length_m =
         scale * std::min(settings.edge_length_m, min_thickness / settings.elements_through_thickness);

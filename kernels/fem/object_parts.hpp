@@ -19,6 +19,7 @@ struct RefinedSurface {
   std::vector<std::array<int, 3>> facets;
   std::vector<int> near_triangle;
   std::unordered_set<std::int64_t> sharp_edges;  // facet edges along the input's sharp edges (undirected_edge_key)
+  std::vector<std::array<double, 3>> holes_m;    // a point in each cavity, for TetGen
 };
 
 // Rivara's longest-edge bisection (an edge is cut only once it is the longest of both its facets,

@@ -267,23 +267,50 @@ struct Bvh {
 
 }  // namespace
 
-std::vector<double> thickness_under_triangles_m(const std::vector<P3>& vertices,
-                                                const std::vector<std::array<int, 3>>& triangles) {
+namespace {
+
+// Per triangle in `which`, the distance from its centroid along sign times its normal to the
+// nearest other triangle, at most the bounding box's diagonal; and the centroids and normals.
+std::vector<double> ray_distances_m(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                                    const std::vector<int>& which, double sign, std::vector<V3>& centroid,
+                                    std::vector<V3>& direction) {
   const int nt = static_cast<int>(triangles.size());
   Bvh tree;
   tree.vertices = &vertices, tree.triangles = &triangles;
   tree.order.resize(nt);
   std::iota(tree.order.begin(), tree.order.end(), 0);
-  std::vector<V3> centroid(nt), inward(nt);
+  centroid.resize(nt), direction.resize(nt);
   for (int t = 0; t < nt; ++t) {
     centroid[t] = (tree.corner(t, 0) + tree.corner(t, 1) + tree.corner(t, 2)) / 3;
-    inward[t] = -(tree.corner(t, 1) - tree.corner(t, 0)).cross(tree.corner(t, 2) - tree.corner(t, 0)).normalized();
+    direction[t] =
+        sign * (tree.corner(t, 1) - tree.corner(t, 0)).cross(tree.corner(t, 2) - tree.corner(t, 0)).normalized();
   }
   tree.build(0, nt, centroid);
   const double reach = (tree.nodes[0].hi - tree.nodes[0].lo).norm();
-  std::vector<double> out(nt);
-  for (int t = 0; t < nt; ++t) out[t] = std::min(tree.nearest(centroid[t], inward[t], t), reach);
+  std::vector<double> out;
+  for (int t : which) out.push_back(std::min(tree.nearest(centroid[t], direction[t], t), reach));
   return out;
+}
+
+}  // namespace
+
+std::vector<P3> points_in_cavities_m(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                                     const std::vector<int>& facing) {
+  if (facing.empty()) return {};
+  std::vector<V3> centroid, outward;
+  const std::vector<double> d = ray_distances_m(vertices, triangles, facing, 1.0, centroid, outward);
+  std::vector<P3> out;
+  for (std::size_t i = 0; i < facing.size(); ++i)
+    out.push_back(arr(centroid[facing[i]] + 0.5 * d[i] * outward[facing[i]]));
+  return out;
+}
+
+std::vector<double> thickness_under_triangles_m(const std::vector<P3>& vertices,
+                                                const std::vector<std::array<int, 3>>& triangles) {
+  std::vector<int> all(triangles.size());
+  std::iota(all.begin(), all.end(), 0);
+  std::vector<V3> centroid, inward;
+  return ray_distances_m(vertices, triangles, all, -1.0, centroid, inward);
 }
 
 }  // namespace clatter::kernels::fem

@@ -52,6 +52,12 @@ class SurfaceProjector {
 
 // The body's thickness under each triangle: the distance from its centroid, along the inward
 // normal, to the nearest other triangle the ray meets (a bounding-volume tree: n log n).
+// A point inside the cavity each given triangle faces: halfway along the ray from its centroid
+// along its normal (into the cavity: its triangles are wound inward) to the far wall.
+std::vector<std::array<double, 3>> points_in_cavities_m(const std::vector<std::array<double, 3>>& vertices_m,
+                                                        const std::vector<std::array<int, 3>>& triangles,
+                                                        const std::vector<int>& facing);
+
 std::vector<double> thickness_under_triangles_m(const std::vector<std::array<double, 3>>& vertices_m,
                                                 const std::vector<std::array<int, 3>>& triangles);
 

@@ -55,10 +55,17 @@ void run(const std::string& switches, tetgenio& in, tetgenio& out) {
 }  // namespace
 
 TetgenFill tetgen_fill(const std::vector<std::array<double, 3>>& points, const std::vector<std::array<int, 3>>& triangles,
-                       const std::string& switches, bool detect_intersections, bool facet_markers) {
+                       const std::string& switches, bool detect_intersections, bool facet_markers,
+                       const std::vector<std::array<double, 3>>& holes) {
   TetgenFill result;
   tetgenio in, out;
   set_facets(in, points, triangles, facet_markers);
+  if (!holes.empty()) {
+    in.numberofholes = static_cast<int>(holes.size());
+    in.holelist = new REAL[3 * holes.size()];
+    for (std::size_t h = 0; h < holes.size(); ++h)
+      for (int k = 0; k < 3; ++k) in.holelist[3 * h + k] = holes[h][k];
+  }
   try {
     if (detect_intersections) {
       tetgenio found;

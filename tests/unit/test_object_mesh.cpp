@@ -184,6 +184,28 @@ TEST(ObjectMesh, SlenderBar) {
   EXPECT_GT(across, 2.5);
 }
 
+// A hollow ball: the inner wall wound inward is a cavity, which TetGen leaves empty.
+TEST(ObjectMesh, HollowBallKeepsItsCavity) {
+  const double r_out = 0.1, r_in = 0.07;
+  TriangleMesh s = clatter::test::icosphere(r_out, 2);
+  const TriangleMesh inner = clatter::test::icosphere(r_in, 2);
+  const int offset = static_cast<int>(s.vertices_m.size());
+  s.vertices_m.insert(s.vertices_m.end(), inner.vertices_m.begin(), inner.vertices_m.end());
+  for (const auto& t : inner.triangles) s.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+  ObjectMeshSettings settings;
+  settings.edge_length_m = 0.02;
+  const ObjectMesh m = timed_mesh("hollow ball", s, settings);
+  expect_within_bounds(m);
+  expect_closed(m);
+  EXPECT_NEAR(m.min_thickness_m, r_out - r_in, 0.1 * (r_out - r_in));
+  const double v = 4.0 / 3 * std::numbers::pi * (std::pow(r_out, 3) - std::pow(r_in, 3));
+  const double a = 4 * std::numbers::pi * (r_out * r_out + r_in * r_in);
+  std::printf("hollow ball: volume error %.3g, area error %.3g\n", mesh_volume(m, true) / v - 1,
+              boundary_area(m) / a - 1);
+  EXPECT_NEAR(mesh_volume(m, true), v, 5e-3 * v);
+  EXPECT_NEAR(boundary_area(m), a, 5e-3 * a);
+}
+
 // A rod as CAD exports one: its side two triangles 30 cm long and 2.6 mm wide per segment, curved.
 // Bisection leaves rows of points along their diagonals; the smoothing and flips clear them.
 TEST(ObjectMesh, SlenderRodOfLongThinTriangles) {
