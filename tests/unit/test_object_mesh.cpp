@@ -13,10 +13,12 @@
 #include <utility>
 #include <vector>
 
+#include "kernels/fem/lowest_mode.hpp"
 #include "kernels/fem/mesh_check.hpp"
 #include "kernels/fem/object_mesh.hpp"
 #include "kernels/fem/smooth_surface.hpp"
 #include "test_meshes.hpp"
+#include "tests/reference/lamb_sphere.hpp"
 
 namespace {
 using namespace clatter::kernels::fem;
@@ -312,6 +314,30 @@ TEST(ObjectMesh, CoarseInputConvergesToItsSmoothSurface) {
     EXPECT_GT(order_curved, 1.8);
     EXPECT_LT(curved[i], straight[i] / 100);
   }
+}
+
+// The lowest free mode of a glass sphere (Lamb's T2) on meshes of one 320-triangle icosphere: the
+// curved mesh of its smooth surface, and the flat one of the polyhedron (smooth_dihedral_deg 0).
+TEST(ObjectMesh, SphereLambFrequencyCurvedAgainstFlat) {
+  const double r = 0.1;
+  clatter::model::Material glass;
+  glass.youngs_pa = 6.2e10, glass.poisson = 0.2, glass.rho_kg_m3 = 2600;
+  const auto t2 = clatter::reference::lamb_sphere_modes(glass.poisson, 4.0).at(0);
+  const double lamb_hz = clatter::reference::lamb_frequency_hz(t2, r, glass.youngs_pa, glass.poisson, glass.rho_kg_m3);
+  const TriangleMesh s = clatter::test::icosphere(r, 2);
+  double error[2] = {0, 0};
+  for (int curved = 0; curved < 2; ++curved) {
+    ObjectMeshSettings settings;
+    settings.edge_length_m = 0.04;
+    settings.smooth_dihedral_deg = curved ? 30 : 0;
+    const ObjectMesh m = mesh_object(s.vertices_m, s.triangles, settings);
+    const LowestMode mode = lowest_free_mode_of(m.mesh, glass);
+    error[curved] = mode.frequency_hz / lamb_hz - 1;
+    std::printf("sphere T2 %s: %lld elements, f %.6g Hz, Lamb %.6g Hz, error %.3g\n", curved ? "curved" : "flat",
+                m.quality.elements, mode.frequency_hz, lamb_hz, error[curved]);
+  }
+  EXPECT_LT(std::abs(error[1]), 2e-3);
+  EXPECT_LT(std::abs(error[1]), std::abs(error[0]) / 4);
 }
 
 }  // namespace
