@@ -33,7 +33,7 @@ struct ObjectMeshSettings {
   double max_radius_edge = 1.5;        // TetGen's -q bounds, as the ellipsoid mesher's
   double min_dihedral_deg = 12.0;
   std::int64_t max_surface_triangles = 4'000'000;  // refuse (MeshError) sizes that would refine past this
-  int retries = 2;  // a mesh that breaks the bounds is made again at 0.8 h, this many times
+  int retries = 2;  // a mesh that breaks the bounds is made again with every size times 0.8, this many times
 };
 
 struct ObjectMesh {
