@@ -51,6 +51,7 @@ struct EllipsoidMesh {
 class MeshError : public std::runtime_error {
  public:
   explicit MeshError(const std::string& reason) : std::runtime_error("ellipsoid mesh: " + reason) {}
+  MeshError(const std::string& mesher, const std::string& reason) : std::runtime_error(mesher + ": " + reason) {}
 };
 
 // Deterministic: the same settings give a bit-identical mesh. Throws std::invalid_argument for

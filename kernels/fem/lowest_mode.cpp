@@ -348,18 +348,28 @@ LowestMode lowest_free_mode(const std::vector<std::array<double, 3>>& vertices_m
   double h_m = settings.edge_length_m;
   if (h_m == 0) h_m = std::cbrt(std::max(enclosed_volume_m3(vertices_m, triangles), 0.0)) / 2;
   if (!(h_m > 0)) h_m = 1;  // a surface enclosing no volume: the mesher refuses it with the reason
-  const Tet10Mesh mesh = tetrahedralize_surface(vertices_m, triangles, h_m);
+  return lowest_free_mode_of(tetrahedralize_surface(vertices_m, triangles, h_m), material, settings, true);
+}
+
+LowestMode lowest_free_mode_of(const Tet10Mesh& mesh, const model::Material& material, const LowestModeSettings& settings,
+                               bool straight) {
+  if (const std::string bad = model::check_material(material); !bad.empty())
+    throw std::invalid_argument("lowest_free_mode: " + bad);
+  if (!(settings.tolerance > 0) || settings.max_iterations < 1 || settings.block_size < 2)
+    throw std::invalid_argument("lowest_free_mode: need tolerance > 0, max_iterations >= 1, block_size >= 2");
   LowestMode out;
   out.elements = static_cast<std::int64_t>(mesh.elements.size());
   out.nodes = mesh.nodes_m.cols();
   out.dofs = 3 * out.nodes;
   for (const auto& e : mesh.elements) {
-    Eigen::Matrix<double, 3, 4> corners;
-    for (int k = 0; k < 4; ++k) corners.col(k) = mesh.nodes_m.col(e[k]);
-    out.volume_m3 += tet10_volume_m3(tet10_straight(corners), keast_degree2());
+    Tet10Coords x;
+    for (int k = 0; k < kTet10Nodes; ++k) x.col(k) = mesh.nodes_m.col(e[k]);
+    out.volume_m3 += straight ? tet10_volume_m3(x, keast_degree2()) : tet10_volume_m3(x);
   }
-  // Straight elements: the stiffness integrand is quadratic, the mass's quartic.
-  const Pencil fine(assemble_stiffness(mesh, material, keast_degree2()), assemble_mass(mesh, rho_kg_m3), mesh.nodes_m);
+  // Straight elements: the stiffness integrand is quadratic, the mass's quartic; curved ones are
+  // rational, integrated by the degree-5 rule.
+  const Pencil fine(assemble_stiffness(mesh, material, straight ? keast_degree2() : keast_degree5()),
+                    assemble_mass(mesh, material.rho_kg_m3), mesh.nodes_m);
   const Coarse coarse = coarse_space(mesh);
   const Sparse& pr = coarse.prolongation;
   const Pencil linear(RowSparse(pr.transpose() * fine.k * pr), RowSparse(pr.transpose() * fine.m * pr), coarse.nodes_m);

@@ -45,6 +45,12 @@ LowestMode lowest_free_mode(const std::vector<std::array<double, 3>>& vertices_m
                             double youngs_pa, double poisson, double rho_kg_m3,
                             const LowestModeSettings& settings = {});
 
+// The same on a given 10-node mesh (kernels/fem/object_mesh.hpp's, say): `straight` when its
+// mid-nodes are at their edges' midpoints (cheaper quadrature), else curved elements are
+// integrated by the degree-5 rule. std::invalid_argument for a material that is not a solid's.
+LowestMode lowest_free_mode_of(const Tet10Mesh& mesh, const model::Material& material,
+                               const LowestModeSettings& settings = {}, bool straight = false);
+
 // The 10-node mesh lowest_free_mode solves on (solid_mesh.cpp): TetGen's "pq1.5/12a<v>Q" fill of
 // the surface, v the volume of the regular tetrahedron of edge edge_length_m, mid-nodes at the
 // straight edge midpoints, shared between elements; elements positively oriented. Throws

@@ -18,6 +18,7 @@
 #include <unordered_map>
 
 #include "kernels/fem/lowest_mode.hpp"
+#include "kernels/fem/mesh_check.hpp"
 #include "kernels/fem/tetgen_fill.hpp"
 
 namespace clatter::kernels::fem {
@@ -29,41 +30,10 @@ std::int64_t edge_key(int a, int b) { return static_cast<std::int64_t>(a) << 32 
 
 [[noreturn]] void refuse(const std::string& why) { throw std::invalid_argument("lowest_free_mode: " + why); }
 
-std::string edge_name(int a, int b) {
-  char name[32];
-  std::snprintf(name, sizeof name, "(%d, %d)", a, b);
-  return name;
-}
-
-// Every edge must bound exactly two triangles, once in each direction: closed, manifold and
-// consistently oriented (the enclosed volume's sign, and so "inside", depend on it).
+// Closed, manifold and consistently oriented (kernels/fem/mesh_check.hpp).
 void check_surface(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
-  if (triangles.size() < 4)
-    refuse("the surface has " + std::to_string(triangles.size()) + " triangles; a closed one needs 4");
-  for (const P3& v : vertices)
-    for (double c : v)
-      if (!std::isfinite(c)) refuse("a vertex coordinate is not finite");
-  const int n = static_cast<int>(vertices.size());
-  std::unordered_map<std::int64_t, int> directed;
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const auto& f = triangles[t];
-    for (int k = 0; k < 3; ++k)
-      if (f[k] < 0 || f[k] >= n)
-        refuse("triangle " + std::to_string(t) + " names vertex " + std::to_string(f[k]) + " of " + std::to_string(n));
-    if (f[0] == f[1] || f[1] == f[2] || f[2] == f[0]) refuse("triangle " + std::to_string(t) + " repeats a vertex");
-    for (int k = 0; k < 3; ++k) ++directed[edge_key(f[k], f[(k + 1) % 3])];
-  }
-  for (const auto& f : triangles)
-    for (int k = 0; k < 3; ++k) {
-      const int a = f[k], b = f[(k + 1) % 3];
-      const auto back = directed.find(edge_key(b, a));
-      const int forward = directed[edge_key(a, b)], backward = back == directed.end() ? 0 : back->second;
-      if (forward + backward == 1) refuse("the surface is open: edge " + edge_name(a, b) + " bounds one triangle only");
-      if (forward + backward > 2)
-        refuse("the surface is not manifold: edge " + edge_name(a, b) + " bounds " +
-               std::to_string(forward + backward) + " triangles");
-      if (forward != 1) refuse("the triangles are not consistently oriented at edge " + edge_name(a, b));
-    }
+  const std::string problem = surface_topology_problem(vertices, triangles);
+  if (!problem.empty()) refuse(problem);
 }
 
 std::string tetgen_failure(int code) {

@@ -4,12 +4,14 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace clatter::kernels::fem {
 namespace {
 
-void set_facets(tetgenio& in, const std::vector<std::array<double, 3>>& points, const std::vector<std::array<int, 3>>& triangles) {
+void set_facets(tetgenio& in, const std::vector<std::array<double, 3>>& points, const std::vector<std::array<int, 3>>& triangles,
+                bool facet_markers) {
   in.firstnumber = 0;
   in.numberofpoints = static_cast<int>(points.size());
   in.pointlist = new REAL[3 * points.size()];
@@ -26,6 +28,20 @@ void set_facets(tetgenio& in, const std::vector<std::array<double, 3>>& points, 
     facet.polygonlist[0].numberofvertices = 3;
     facet.polygonlist[0].vertexlist = new int[3]{triangles[f][0], triangles[f][1], triangles[f][2]};
   }
+  if (facet_markers) {
+    in.facetmarkerlist = new int[triangles.size()];
+    for (std::size_t f = 0; f < triangles.size(); ++f) in.facetmarkerlist[f] = static_cast<int>(f) + 1;  // 0: no marker
+  }
+}
+
+void read_faces(const tetgenio& out, TetgenFill& result) {
+  result.faces.resize(static_cast<std::size_t>(std::max(out.numberoftrifaces, 0)));
+  for (std::size_t f = 0; f < result.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) result.faces[f][static_cast<std::size_t>(k)] = out.trifacelist[3 * f + k];
+  if (out.trifacemarkerlist != nullptr) {
+    result.face_facet.resize(result.faces.size());
+    for (std::size_t f = 0; f < result.faces.size(); ++f) result.face_facet[f] = out.trifacemarkerlist[f] - 1;
+  }
 }
 
 void run(const std::string& switches, tetgenio& in, tetgenio& out) {
@@ -39,16 +55,26 @@ void run(const std::string& switches, tetgenio& in, tetgenio& out) {
 }  // namespace
 
 TetgenFill tetgen_fill(const std::vector<std::array<double, 3>>& points, const std::vector<std::array<int, 3>>& triangles,
-                       const std::string& switches, bool detect_intersections) {
+                       const std::string& switches, bool detect_intersections, bool facet_markers,
+                       const std::vector<std::array<double, 3>>& holes) {
   TetgenFill result;
   tetgenio in, out;
-  set_facets(in, points, triangles);
+  set_facets(in, points, triangles, facet_markers);
+  if (!holes.empty()) {
+    in.numberofholes = static_cast<int>(holes.size());
+    in.holelist = new REAL[3 * holes.size()];
+    for (std::size_t h = 0; h < holes.size(); ++h)
+      for (int k = 0; k < 3; ++k) in.holelist[3 * h + k] = holes[h][k];
+  }
   try {
     if (detect_intersections) {
       tetgenio found;
       run("pdQ", in, found);
       result.intersecting_faces = found.numberoftrifaces;
-      if (result.intersecting_faces > 0) return result;
+      if (result.intersecting_faces > 0 || switches.empty()) {
+        if (result.intersecting_faces > 0) read_faces(found, result);
+        return result;
+      }
     }
     run(switches, in, out);
   } catch (int code) {  // TETLIBRARY: terminatetetgen throws its exit code
@@ -56,6 +82,7 @@ TetgenFill tetgen_fill(const std::vector<std::array<double, 3>>& points, const s
     return result;
   }
   if (out.numberofcorners != 4 || out.numberoftetrahedra <= 0) return result;
+  if (facet_markers) read_faces(out, result);
   LinearMesh& m = result.mesh;
   m.points.resize(static_cast<std::size_t>(out.numberofpoints));
   for (std::size_t v = 0; v < m.points.size(); ++v)
