@@ -279,23 +279,25 @@ void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& 
 }
 
 std::vector<std::string> ModalSource::coverage(const std::vector<ObjectModel>& models) const {
-  std::vector<std::string> lines;
+  std::vector<std::string> lines;  // one per object, its reasons joined
   for (std::size_t i = 0; i < models.size() && i < voices_.size(); ++i) {
     const ModalVoice& v = voices_[i];
-    const int id = models[i].object->id;
+    std::string line;
     if (!v.own_model_missing.empty())
-      lines.push_back(fmt::format("object {}: its base frequency {:.4g} Hz (from the {}) is below --proxy-above-hz {:.4g} Hz: it "
-                                  "should ring with its own model, but {}; it rings with its proxy (clatter-bank object "
-                                  "builds the model: docs/modal.md \"Objects with their own models\")",
-                                  id, v.base_frequency_hz, v.base_frequency_from, options_.proxy_above_hz,
-                                  v.own_model_missing));
-    if (v.own_model) continue;
-    const auto& u = v.frame.unit_axes;  // a <= b <= c
-    const double ratio = u[0] / u[2], min_ratio = banks_[v.bank].header.min_ratio;
-    if (ratio < min_ratio * (1 - 1e-9))
-      lines.push_back(fmt::format("object {}: axis ratio a/c = {:.3f} is outside modal bank '{}''s patch (a/c >= {}): it rings "
-                                  "with the nearest entry's mode shapes, scaled to its base frequency {:.4g} Hz (from the {})",
-                                  id, ratio, names_[v.bank], min_ratio, v.base_frequency_hz, v.base_frequency_from));
+      line = fmt::format("its base frequency {:.4g} Hz (from the {}) is below --proxy-above-hz {:.4g} Hz: it should ring with its "
+                         "own model, but {}; it rings with its proxy (clatter-bank object builds the model: docs/modal.md "
+                         "\"Objects with their own models\")",
+                         v.base_frequency_hz, v.base_frequency_from, options_.proxy_above_hz, v.own_model_missing);
+    if (!v.own_model) {
+      const auto& u = v.frame.unit_axes;  // a <= b <= c
+      const double ratio = u[0] / u[2], min_ratio = banks_[v.bank].header.min_ratio;
+      if (ratio < min_ratio * (1 - 1e-9))
+        line += fmt::format("{}axis ratio a/c = {:.3f} is outside modal bank '{}''s patch (a/c >= {}): it rings with the nearest "
+                            "entry's mode shapes, scaled to its base frequency {:.4g} Hz (from the {})",
+                            line.empty() ? "" : "; and its ", ratio, names_[v.bank], min_ratio, v.base_frequency_hz,
+                            v.base_frequency_from);
+    }
+    if (!line.empty()) lines.push_back(fmt::format("object {}: {}", models[i].object->id, line));
   }
   return lines;
 }

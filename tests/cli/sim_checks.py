@@ -66,7 +66,8 @@ check(all(abs(math.hypot(*e["impulse_n_s"]) / (objects[e["a"]]["mass_kg"] * kick
 times = [e["t_s"] for e in scene["events"]]
 check(times == sorted(times), "events in time order")
 plate_events = [e for e in scene["events"] if 1 in (e["a"], e["b"])]
-check(len(plate_events) >= 1 and all(e["t_s"] < t_break for e in plate_events), "the plate's own impact comes before it breaks")
+check(len(plate_events) >= 2 and all(e["t_s"] <= t_break for e in plate_events) and plate_events[0]["t_s"] < t_break - 0.01,
+      "the plate lands whole on its rim more than 10 ms before the impact that breaks it (plate.break_speed_m_s)")
 check(scene["generator"]["program"] == "clatter-sim" and scene["generator"]["time_step_s"] == 2e-4, "generator names the program and its step")
 rocks = json.load(open("rocks_a.json"))
 check(len(rocks["objects"]) >= 100 and all(o["material"] == "granite" for o in rocks["objects"]), f"{len(rocks['objects'])} granite rocks")
