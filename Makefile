@@ -5,7 +5,8 @@
 #                             PAN, modal and ground sound
 #                             (out/demo/debris.wav, its stems and spectrogram); then the two simulated
 #                             scenes of scenes/*.toml (clatter-sim: a rock slide and a shattering
-#                             plate) and the plate rendered with every source (out/demo/plate.wav)
+#                             plate), the intact plate's own modal model (clatter-bank object) and
+#                             the plate rendered with every source (out/demo/plate.wav)
 #   make test                 every test (ctest) but those labelled extended, in build/$(PRESET), then `make fuzz`
 #   make test-extended        the extended tests (minutes each: the ground sound's elevation and eta sweep)
 #   make fuzz                 the libFuzzer harnesses of the readers, 30 s each (preset fuzz, clang-14)
@@ -49,7 +50,9 @@ demo: build
 	$(BUILD)/bin/clatter-sim -c scenes/rockslide.toml -o out/demo/rockslide.json
 	$(BUILD)/bin/clatter-sim -c scenes/plate.toml -o out/demo/plate.json
 	mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-plate.toml -o out/demo/modal-plate.h5 --log-view
-	$(BUILD)/bin/clatter-synth -i out/demo/plate.json -b out/demo/bank.h5 -m out/demo/modal-plate.h5 -g out/demo/ground.h5 -o out/demo/plate.wav --stems
+	mpiexec -n 2 $(BUILD)/bin/clatter-bank object -c configs/object-plate.toml -o out/demo/objects-plate.h5 --log-view
+	$(BUILD)/bin/clatter-bank info out/demo/objects-plate.h5
+	$(BUILD)/bin/clatter-synth -i out/demo/plate.json -b out/demo/bank.h5 -m out/demo/modal-plate.h5 -O out/demo/objects-plate.h5 -g out/demo/ground.h5 -o out/demo/plate.wav --stems
 	$(PYTHON) analysis/spectrogram.py out/demo/plate.wav
 
 test: build

@@ -15,6 +15,7 @@
 #include "io/content_hash.hpp"
 #include "io/mesh.hpp"
 #include "io/scene.hpp"
+#include "io/text_file.hpp"
 
 namespace clatter::io {
 namespace {
@@ -70,21 +71,6 @@ std::filesystem::path mesh_folder_of(const std::string& scene_path) {
   return folder += ".meshes";
 }
 
-// Writes `text` to `path` through a temporary file and a rename: never a partial file under the name.
-void write_file_atomically(const std::filesystem::path& path, const std::string& text, const char* what) {
-  const std::string temp = path.string() + ".partial";
-  register_temporary(temp);
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(fmt::format("{}: cannot create the {} file", path.string(), what));
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(fmt::format("{}: writing the {} failed (disk full?)", path.string(), what));
-  }
-  std::filesystem::rename(temp, path);
-  unregister_temporary(temp);
-}
-
 // Each mesh object's OBJ in the scene's mesh folder, named ID-HASH.obj by its text's hash, so a run
 // never overwrites a file the scene already there names with other content: until the new scene is
 // renamed into place, the old one and its meshes stay consistent. Returns id -> path relative to
@@ -103,7 +89,7 @@ std::map<int, std::string> write_meshes(const Scene& scene, const std::string& s
     }
     const std::string text = obj_text(*o.mesh);
     const std::string name = fmt::format("{}-{}.obj", o.id, hash_hex(text_hash(text)));
-    write_file_atomically(folder / name, text, "mesh");
+    write_text_file((folder / name).string(), text, "mesh");
     paths[o.id] = folder.filename().string() + "/" + name;
   }
   return paths;

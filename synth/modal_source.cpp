@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <span>
@@ -53,6 +54,7 @@ void ModalSource::add(const Impact& im, const std::vector<Vec3>& listeners, int 
       response[k].emplace(v.omega_rad_s[k], v.damping_ratio[k], im.tau_s, im.peak_force_n * v.shape_scale * g[k]);
   // The energy account (docs/synth.md "Energy account"): once per excitation, not per listener.
   ObjectEnergy& account = energy_[im.model->index];
+  if (std::any_of(response.begin(), response.end(), [](const auto& r) { return r.has_value(); })) ++account.impacts;
   for (std::size_t k = 0; k < v.modes.size(); ++k)
     if (response[k]) {
       account.injected_j += response[k]->energy_after_contact_j();

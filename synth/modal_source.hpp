@@ -96,6 +96,7 @@ struct ModalStats {
 struct ObjectEnergy {
   int object_id = 0;
   double injected_j = 0, radiated_j = 0;
+  std::size_t impacts = 0;  // impacts that excited at least one of its modes
 };
 
 class ModalSource : public SoundSource {

@@ -13,6 +13,7 @@
 #include "io/linked_libraries.hpp"
 #include "core/cleanup.hpp"
 #include "core/errors.hpp"
+#include "io/text_file.hpp"
 #include "io/wav.hpp"
 #include "synth/ground_source.hpp"
 #include "synth/load_scene.hpp"
@@ -24,7 +25,7 @@ using namespace clatter;
 namespace {
 
 struct Options {
-  std::string scene, impulses, bank, ground_bank, out = "out.wav", format = "float";
+  std::string scene, impulses, bank, ground_bank, out = "out.wav", format = "float", voices;
   std::vector<std::string> modal_banks, object_banks;
   synth::ModalOptions modal;
   int rate_hz = 44100;
@@ -82,6 +83,24 @@ void print_summary(const std::vector<synth::SoundSource*>& sources, const std::v
     std::printf("clatter-synth: modal: warning: for %zu objects the bank's last mode, scaled, lies below the top frequency: "
                 "their modes above it are missing (a bank to a higher f_max multiple has them; docs/modal.md)\n",
                 m.band_short);
+}
+
+// One row per object: how the modal source voiced it and what its modes received and radiated
+// (docs/synth.md "Objects with their own models"; analysis/proxy_table.py compares two renders).
+void write_voices(const std::string& path, const synth::ModalSource& modal, const io::Scene& scene) {
+  std::string text = "object,voiced_by,bank,entry,base_frequency_hz,gamma,modes_rendered,f1_hz,f2_hz,f3_hz,f4_hz,f5_hz,"
+                     "impacts,injected_j,radiated_j\n";
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const synth::ModalVoice& v = modal.voice(i);
+    const synth::ObjectEnergy& e = modal.energy().at(i);
+    std::string f;
+    for (std::size_t k = 0; k < 5; ++k)
+      f += k < v.omega_rad_s.size() ? fmt::format("{:.6g},", v.omega_rad_s[k] / (2 * 3.14159265358979323846)) : ",";
+    text += fmt::format("{},{},{},{},{:.6g},{:.6g},{},{}{},{:.6g},{:.6g}\n", scene.objects[i].id, v.own_model ? "own" : "proxy",
+                        v.bank, v.own_model ? v.object_entry->key : std::to_string(v.entry), v.base_frequency_hz, v.gamma,
+                        v.modes.size(), f, e.impacts, e.injected_j, e.radiated_j);
+  }
+  io::write_text_file(path, text, "voices");
 }
 
 int run(const Options& o) {
@@ -162,6 +181,11 @@ int run(const Options& o) {
     for (const auto& line : lines) std::printf("clatter-synth: %s:   %s\n", sources[s]->name().c_str(), line.c_str());
   }
   print_summary(sources, stems, modal, o.modal);
+  if (!o.voices.empty()) {
+    if (!modal) throw InputError("--voices: needs modal sound (-m or -O)");
+    write_voices(o.voices, *modal, scene);
+    std::printf("clatter-synth: wrote %s: each object's modal voice\n", o.voices.c_str());
+  }
   if (ground) print_ground_summary(*ground, scene.listeners_m.size());
   return kExitOk;
 }
@@ -205,6 +229,8 @@ int main(int argc, char** argv) {
   app.add_flag("--normalize", o.normalize, "scale the peak to 0.99 instead of writing pascals");
   app.add_flag("--no-energy-rule", [&o](std::int64_t) { o.modal.energy_rule = false; },
                "render modal sound without the energy rule (docs/synth.md \"Energy account\"), to measure what it changes");
+  app.add_option("--voices", o.voices, "write each object's modal voice as CSV: own model or proxy, scale, its first "
+                                        "rendered frequencies, impacts, energy into its modes and radiated");
   app.add_flag("--stems", o.stems, "also write one file per source type (OUT.pan.wav, OUT.modal.wav, OUT.ground.wav)");
   try {
     app.parse(argc, argv);

@@ -44,7 +44,9 @@ const io::Schema& object_schema() {
           {"modes.cluster_gap", 5e-3, "relative gap below which neighbouring frequencies form one multiplet",
            {0.0, 0.1, true}},
           {"mesh.elements_per_wavelength", 3.0, "h = shear wavelength at f_max / this", {1.0, 20.0}},
-          {"mesh.elements_through_thickness", std::int64_t{2}, "and h at most the thinnest part / this", {1, 10}},
+          {"mesh.elements_through_thickness", std::int64_t{1}, "and h at most the thinnest part / this (1: 10-node "
+                                                                "tetrahedra hold pure bending exactly; docs/validation.md)",
+           {1, 10}},
           {"mesh.max_radius_edge", 3.0, "largest radius-edge ratio a mesh may have", {1.0, 100.0}},
           {"mesh.min_dihedral_deg", 5.0, "smallest dihedral angle a mesh may have [deg]", {0.0, 60.0}},
           {"mesh.min_jacobian_ratio", 0.2, "smallest min/max det J within a curved element", {0.0, 1.0, true}},

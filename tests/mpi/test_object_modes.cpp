@@ -6,9 +6,10 @@
 //    its first torsion mode against Saint-Venant (tests/reference/bar_modes.*), within 1 %, the
 //    modes picked by their shapes on the surface;
 //  - a thin free circular disk (thickness / diameter 1/40): its first 6 distinct flexural
-//    frequencies against Kirchhoff plate theory (tests/reference/circular_plate.*), within 2 %
-//    (Kirchhoff neglects shear and rotary inertia: 0.25-1.6 % high at this thickness), with the
-//    doublets (n >= 1 nodal diameters) as pairs.
+//    frequencies against Kirchhoff plate theory with the first-order Mindlin correction for shear
+//    and rotary inertia (tests/reference/circular_plate.*; Kirchhoff alone is 0.25-1.6 % high at
+//    this thickness), within 2 %, with the doublets (n >= 1 nodal diameters) as pairs. One element
+//    through the thickness: 10-node tetrahedra hold pure bending exactly. Minutes: label extended.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -99,7 +100,7 @@ TEST(ObjectModes, SphereMeshMatchesLambsFirstTenFrequenciesWithTheirMultipliciti
   ASSERT_GE(lamb.size(), 11u);
   const double f10 = reference::lamb_frequency_hz(lamb[9], radius_m, m.youngs_pa, nu, m.rho_kg_m3);
   const double f11 = reference::lamb_frequency_hz(lamb[10], radius_m, m.youngs_pa, nu, m.rho_kg_m3);
-  const auto e = solve(test::icosphere(radius_m, 3), m, std::sqrt(f10 * f11), 6.0, 2);
+  const auto e = solve(test::icosphere(radius_m, 3), m, std::sqrt(f10 * f11), 3.0, 2);
   if (!root()) return;
   const auto found = groups(e.modal.frequencies_hz, 0.004);
   ASSERT_GE(found.size(), 10u);
@@ -168,21 +169,30 @@ TEST(ObjectModes, SlenderBarBendsAsTimoshenkoAndTwistsAsSaintVenant) {
   EXPECT_NEAR(ft / f_twist, 1.0, 0.01);
 }
 
-TEST(ObjectModes, ThinDiskFlexesAsAKirchhoffPlate) {
+TEST(ObjectModesSlow, ThinDiskFlexesAsAPlate) {
   // Aluminium-like, radius 0.1 m, thickness 5 mm: thickness / diameter 1/40.
   const double radius_m = 0.1, thickness_m = 0.005, nu = 0.33;
   const auto m = material(7.0e10, nu, 2700);
   const auto plate = reference::free_circular_plate_modes(nu, 8);
   std::vector<double> f_ref;
-  for (const auto& p : plate) f_ref.push_back(reference::circular_plate_frequency_hz(p, radius_m, thickness_m, m.youngs_pa, nu, m.rho_kg_m3));
-  const auto e = solve(test::disk(radius_m, thickness_m, 96, 16), m, 0.5 * (f_ref[5] + f_ref[6]), 6.0, 2);
+  // Kirchhoff's roots with the first-order Mindlin correction for shear and rotary inertia
+  // (reference::mindlin_over_kirchhoff_estimate): at thickness / radius 1/20 Kirchhoff alone is
+  // 0.25-1.6 % high for these six, more than a FEM of the solid should be held to.
+  std::vector<double> f_kirchhoff;
+  for (const auto& p : plate) {
+    f_kirchhoff.push_back(reference::circular_plate_frequency_hz(p, radius_m, thickness_m, m.youngs_pa, nu, m.rho_kg_m3));
+    f_ref.push_back(f_kirchhoff.back() * reference::mindlin_over_kirchhoff_estimate(p.lambda2, thickness_m / radius_m, nu));
+  }
+  const auto e = solve(test::disk(radius_m, thickness_m, 96, 16), m, 0.5 * (f_ref[5] + f_ref[6]), 6.0, 1);
   if (!root()) return;
   const auto found = groups(e.modal.frequencies_hz, 0.004);
   ASSERT_GE(found.size(), 6u);
   for (std::size_t i = 0; i < 6; ++i) {
     const int expected = plate[i].diameters_n == 0 ? 1 : 2;
-    std::printf("Kirchhoff (n=%d, s=%d): %.2f Hz, FEM %.2f Hz (%+.3f %%), %d of %d modes\n", plate[i].diameters_n,
-                plate[i].circles_s, f_ref[i], found[i].first, 100 * (found[i].first / f_ref[i] - 1), found[i].second, expected);
+    std::printf("(n=%d, s=%d): Kirchhoff %.2f Hz, with Mindlin's correction %.2f Hz; FEM %.2f Hz (%+.3f %%, against Kirchhoff "
+                "alone %+.3f %%), %d of %d modes\n",
+                plate[i].diameters_n, plate[i].circles_s, f_kirchhoff[i], f_ref[i], found[i].first,
+                100 * (found[i].first / f_ref[i] - 1), 100 * (found[i].first / f_kirchhoff[i] - 1), found[i].second, expected);
     EXPECT_NEAR(found[i].first / f_ref[i], 1.0, 0.02) << "flexural frequency " << i;
     EXPECT_EQ(found[i].second, expected) << "flexural frequency " << i;
   }
