@@ -33,6 +33,7 @@ struct MeshSources {
   std::vector<Eigen::Vector3d> position_m;
   std::vector<Eigen::Vector3d> dipole_axis;            // unit; zero where the source is a monopole only
   std::vector<std::complex<double>> monopole, dipole;  // strengths: p = q G + d (axis . grad_y) G
+  std::vector<double> spread_m;  // > 0: the source is spread over a disk across its axis (mesh_transfer.cpp)
 
   struct Field {
     std::complex<double> pressure, normal_derivative;

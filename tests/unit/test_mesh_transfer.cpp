@@ -162,9 +162,11 @@ TEST(MeshTransferBody, SmoothAsymmetricBodyFarFieldMatchesKirchhoffHelmholtz) {
   const auto vibration = [a](const Eigen::Vector3d& x) -> Eigen::Vector3d {
     return Eigen::Vector3d(0.5 * std::sin(3 * x.x() / a), std::cos(2 * x.y() / a), 0.7 * std::sin(2 * (x.x() + x.z()) / a)) * 1e-6;
   };
-  // k a = 0.5 and 5 (a the mean radius); at k = 300 (k a = 15) the weakest of the 10 far-field
-  // directions of the translation is 3.2 % off with a boundary residual of 0.23 % (not yet
-  // understood; docs/transfer.md "Any closed mesh", limits), so it is held to 5 %.
+  // k a = 0.5 and 5 (a the mean radius); at k = 300 (k a = 15) the comparison is pointwise
+  // relative and one of the 10 directions of the translation's pattern lies in a weak lobe
+  // (|p| 1/27 of the peak): the 0.23 % boundary residual shows there as 3.2 % (0.12 % of the
+  // peak; the expansion equals the sources' own field and their own Kirchhoff-Helmholtz
+  // integral to 1e-5 there), so k = 300 is held to 5 %.
   for (double k : {10.0, 100.0, 300.0}) {
     const double bound = k < 200 ? 0.01 : 0.05;
     const double spacing = std::min(0.002, 2 * kPi / k / 20);  // the quadrature: 20 parts a wavelength
