@@ -355,7 +355,7 @@ std::vector<std::pair<int, int>> columns_of(const Layout& layout) {
 }
 
 Fit fit_layout(double k, const Layout& layout, const MeshSurfacePoints& dense, const std::vector<double>& g_dense,
-               const std::vector<int>& cell, int cells) {
+               const std::vector<int>& cell, int cells, const std::vector<double>& point_scale) {
   const auto col = columns_of(layout);
   Eigen::MatrixXcd a = Eigen::MatrixXcd::Zero(cells, layout.unknowns);
   Eigen::VectorXcd b = Eigen::VectorXcd::Zero(cells);
@@ -365,7 +365,7 @@ Fit fit_layout(double k, const Layout& layout, const MeshSurfacePoints& dense, c
   for (std::size_t j = 0; j < layout.position.size(); ++j)
     for (std::size_t i = 0; i < dense.size(); ++i) {
       const auto c = static_cast<Eigen::Index>(cell[i]);
-      const double w = dense.weight_m2[i] / std::sqrt(area[static_cast<std::size_t>(c)]);
+      const double w = point_scale[i] * dense.weight_m2[i] / std::sqrt(area[static_cast<std::size_t>(c)]);
       std::complex<double> dg = 0, dd = 0;
       for_each_point(layout.position[j], layout.axis[j], layout.spread[j], [&](const Eigen::Vector3d& y, double share) {
         const PairField pf = pair_field(k, dense.position_m[i], dense.normal[i], y, layout.axis[j]);
@@ -376,7 +376,7 @@ Fit fit_layout(double k, const Layout& layout, const MeshSurfacePoints& dense, c
       if (col[j].second >= 0) a(c, col[j].second) += w * dd;
     }
   for (std::size_t i = 0; i < dense.size(); ++i)
-    b(cell[i]) += dense.weight_m2[i] / std::sqrt(area[static_cast<std::size_t>(cell[i])]) * g_dense[i];
+    b(cell[i]) += point_scale[i] * dense.weight_m2[i] / std::sqrt(area[static_cast<std::size_t>(cell[i])]) * g_dense[i];
   Fit fit;
   fit.strengths = solve_regularized_least_squares(a, b);
   const double bn = b.norm();
@@ -549,7 +549,17 @@ MeshTransfer solve_mesh_mode_transfer(std::span<const std::array<double, 3>> nod
     const MeshSurfacePoints fit_points = sample_surface(nodes_m, faces, shape, cell_spacing / 2, Rule::kCentroid);
     int cells = 0;
     const auto cell = cells_of(fit_points, cell_spacing, &cells);
-    const Fit fit = fit_layout(k, layout, fit_points, neumann_data(fit_points, scale), cell, cells);
+    // Near a sharp edge (inscribed ball smaller than the spacing, or than a plate's half-thickness)
+    // u.n jumps, which no field of sources a spacing deep can follow; at full weight the misfit
+    // there rings over the faces (translating cylinder: 21 % error 2 cm from the rims, far field
+    // 42 % off); weighted by D / reference it stays at the edge (9 %, 14 %; with a finer mesh
+    // 2.4 %, 2.3 %). The boundary residual is still measured at full weight.
+    std::vector<double> point_scale(fit_points.size(), 1.0);
+    const double edge_reference = std::min(cap, median_ball);
+    for (std::size_t i = 0; i < fit_points.size(); ++i)
+      point_scale[i] =
+          inscribed_radius_m(tree, fit_points.position_m[i], fit_points.normal[i], edge_reference) / edge_reference;
+    const Fit fit = fit_layout(k, layout, fit_points, neumann_data(fit_points, scale), cell, cells, point_scale);
     auto sources = std::make_shared<MeshSources>(sources_of(k, layout, fit));
     // The check points: an independent rule (no dense point among them), about as many as cells x 3.
     const bool fine_mesh = faces.size() > static_cast<std::size_t>(cells);

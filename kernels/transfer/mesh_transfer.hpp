@@ -13,6 +13,8 @@
 //    plate and cannot make a bending mode's odd field;
 //  - spacing from the air wavelength, the data's node spacing and the depth, under a ceiling on
 //    the unknowns (the QR costs their square times the fit points).
+// Accurate for bulky and smooth bodies; sharp rims and thin plates are fitted with large
+// residuals at an affordable cost (measured in the docs): boundary_residual says so per mode.
 // docs/transfer.md "Any closed mesh (object bank)" derives and measures it.
 #include <Eigen/Core>
 #include <array>
@@ -52,7 +54,7 @@ struct MeshSurfacePoints {
 
 // Points of every face by an n x n split of its parameter triangle and a 3-point (degree 2) rule
 // on each part, n from `spacing_m` and the face's size; u interpolated from `shape` ([node][3],
-// may be empty). For the tests' quadratures (Kirchhoff-Helmholtz) and the solver's check set.
+// may be empty). For quadratures over the surface (the tests' Kirchhoff-Helmholtz integrals).
 MeshSurfacePoints mesh_surface_points(std::span<const std::array<double, 3>> nodes_m,
                                       std::span<const std::array<std::int32_t, 6>> faces, std::span<const double> shape,
                                       double spacing_m);
@@ -67,7 +69,8 @@ struct MeshTransfer {
   double source_spacing_m = 0;   // the largest spacing the layout allowed (after the ceiling)
   int sources = 0;               // source positions; unknowns = sources + dipoles
   int dipoles = 0;
-  int fit_points = 0, check_points = 0, attempts = 0;
+  int fit_points = 0;             // rows of the least squares: area-averaged cells of the surface
+  int check_points = 0, attempts = 0;
 };
 
 // The kernel's own constants (not stored in a bank).
