@@ -465,6 +465,7 @@ MeshTransfer solve_mesh_mode_transfer(std::span<const std::array<double, 3>> nod
                                       double omega_rad_s, const model::TransferSettings& settings,
                                       const MeshTransferOptions& options) {
   if (shape.size() != 3 * nodes_m.size()) throw std::invalid_argument("mesh transfer: shape is not [node][3]");
+  if (faces.empty() || !(omega_rad_s > 0)) throw std::invalid_argument("mesh transfer: no faces, or omega <= 0");
   const double k = omega_rad_s / settings.sound_speed_m_s;
   const double scale = settings.air_density_kg_m3 * omega_rad_s * omega_rad_s;  // dp/dn = rho omega^2 u.n
   const double lambda = 2 * kPi / k;
