@@ -10,9 +10,11 @@
 
 #include "io/modal_bank.hpp"
 #include "kernels/fem/ellipsoid_mesh.hpp"
+#include "kernels/transfer/mesh_transfer.hpp"
 #include "kernels/transfer/mode_transfer.hpp"
 #include "kernels/transfer/special_functions.hpp"
 #include "kernels/transfer/surface_interpolation.hpp"
+#include "tests/unit/quadratic_meshes.hpp"
 
 namespace {
 using namespace clatter::kernels;
@@ -96,6 +98,31 @@ void BM_TransferBankMode(benchmark::State& state) {
   state.counters["kc"] = t.expansion.k_rad_m * e.axes_m[2];
 }
 
+// One mode of the 26 cm ceramic plate, 6 mm thick (mesh edges ~5 mm), through the general-shape
+// solver (kernels/transfer/mesh_transfer.hpp): args: f in Hz, the ceiling on unknowns. A made-up
+// bending mode at the Kirchhoff plate's wavenumber (E 70 GPa, rho 2400 kg/m^3, nu 0.22).
+void BM_TransferPlateMode(benchmark::State& state) {
+  static const auto plate = clatter::test::plate(0.13, 0.006, 26);
+  const double omega = 2 * std::numbers::pi * static_cast<double>(state.range(0));
+  const double stiffness = 70e9 * std::pow(0.006, 3) / (12 * (1 - 0.22 * 0.22)), mass_per_area = 2400 * 0.006;
+  const double kb = std::pow(omega * omega * mass_per_area / stiffness, 0.25);
+  std::vector<double> shape;
+  for (const auto& p : plate.nodes_m)
+    shape.insert(shape.end(), {0, 0, 1e-3 * std::cos(kb * (0.8 * p[0] + 0.6 * p[1]) + 0.3) * std::cos(0.7 * kb * p[1])});
+  transfer::MeshTransferOptions options;
+  options.max_unknowns = static_cast<int>(state.range(1));
+  transfer::MeshTransfer t;
+  for (auto _ : state) {
+    t = transfer::solve_mesh_mode_transfer(plate.nodes_m, plate.faces, shape, omega, transfer::TransferSettings{}, options);
+    benchmark::DoNotOptimize(t.expansion.coefficients.data());
+  }
+  state.counters["sources"] = t.sources;
+  state.counters["dipoles"] = t.dipoles;
+  state.counters["cells"] = t.fit_points;
+  state.counters["residual"] = t.boundary_residual;
+  state.counters["order"] = t.expansion.order;
+}
+
 // Evaluation of |p| at one listener from a stored expansion of the given order.
 void BM_MultipoleEvaluate(benchmark::State& state) {
   const int order = static_cast<int>(state.range(0));
@@ -111,4 +138,6 @@ BENCHMARK(BM_TransferSphereMode)->ArgsProduct({{1, 10, 20, 40, 70, 90}, {2}, {16
     ->Args({90, 8, 164})->Args({20, 2, 82})->Args({70, 2, 82})
     ->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_TransferBankMode)->Args({0, 0})->Args({0, 5})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_TransferPlateMode)->Args({2000, 1500})->Args({8000, 1500})->Args({20000, 1500})->Args({8000, 800})
+    ->Args({8000, 3000})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_MultipoleEvaluate)->Arg(4)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMicrosecond);

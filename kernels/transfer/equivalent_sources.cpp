@@ -74,11 +74,13 @@ std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit
   return a;
 }
 
+}  // namespace
+
 // Tikhonov-regularized least squares, min ||A c - b||^2 + mu^2 ||c||^2, as LAPACK's QR least
 // squares (zgels) of [A; mu I]: overlapping sources make A numerically rank-deficient by design, and
 // mu at 1e-10 of A's scale keeps c bounded without touching the fit. LAPACK (OpenBLAS on Debian)
 // factors 5-10x faster than Eigen's own QR; it is serial, so the result is the same on any rank.
-Eigen::VectorXcd solve_regularized(const Eigen::MatrixXcd& a, const Eigen::VectorXcd& b) {
+Eigen::VectorXcd solve_regularized_least_squares(const Eigen::MatrixXcd& a, const Eigen::VectorXcd& b) {
   const Eigen::Index m = a.rows(), n = a.cols();
   const double mu = 1e-10 * a.norm() / std::sqrt(static_cast<double>(n));
   Eigen::MatrixXcd augmented(m + n, n);  // column-major, as LAPACK wants
@@ -96,8 +98,6 @@ Eigen::VectorXcd solve_regularized(const Eigen::MatrixXcd& a, const Eigen::Vecto
   if (info != 0) throw std::runtime_error("equivalent sources: LAPACK zgels failed, info " + std::to_string(info));
   return rhs.head(n);
 }
-
-}  // namespace
 
 SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredData& g, const SourceLayout& layout,
                       double class_threshold) {
@@ -132,7 +132,7 @@ SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredDa
     const auto& b = rhs[c];
     ParityFit pf;
     pf.sigma = sigmas[c];
-    pf.strengths = solve_regularized(a, b);
+    pf.strengths = solve_regularized_least_squares(a, b);
     pf.data_norm = norms[c];
     pf.amplification = a.norm() * pf.strengths.norm() / b.norm();
     out.classes.push_back(std::move(pf));

@@ -33,6 +33,11 @@ struct SourceFit {
   double data_norm = 0;            // ||g|| over the whole surface
 };
 
+// min ||A c - b||^2 + mu^2 ||c||^2, mu = 1e-10 ||A||_F / sqrt(columns), by LAPACK's QR least
+// squares (zgels) of [A; mu I]: overlapping sources make A numerically rank-deficient by design,
+// and mu keeps c bounded without touching the fit. Serial, so the same on any rank.
+Eigen::VectorXcd solve_regularized_least_squares(const Eigen::MatrixXcd& a, const Eigen::VectorXcd& b);
+
 // Fits every parity class of `g` whose share of ||g|| is at least `class_threshold`.
 SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredData& g, const SourceLayout& layout,
                       double class_threshold);

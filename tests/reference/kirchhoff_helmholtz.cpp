@@ -12,7 +12,6 @@ namespace kt = kernels::transfer;
 double far_field_vs_kirchhoff_helmholtz(const kt::Multipole& expansion, const kt::ExteriorSolution& solution,
                                         const kt::SurfacePoints& grid, const std::function<std::vector<double>(int)>& g,
                                         double r_m) {
-  constexpr double kPi = std::numbers::pi;
   const double k = solution.k_rad_m;
   // The surface samples over all 8 mirrors, once.
   std::vector<Eigen::Vector3d> y, n;
@@ -31,6 +30,15 @@ double far_field_vs_kirchhoff_helmholtz(const kt::Multipole& expansion, const kt
       ps.push_back(p[i]);
     }
   }
+  return far_field_vs_kirchhoff_helmholtz(expansion, y, n, w, ps, gs, r_m);
+}
+
+double far_field_vs_kirchhoff_helmholtz(const kt::Multipole& expansion, const std::vector<Eigen::Vector3d>& y,
+                                        const std::vector<Eigen::Vector3d>& n, const std::vector<double>& w,
+                                        const std::vector<std::complex<double>>& ps, const std::vector<double>& gs,
+                                        double r_m) {
+  constexpr double kPi = std::numbers::pi;
+  const double k = expansion.k_rad_m;
   double worst = 0;
   for (int q = 0; q < 10; ++q) {
     const double z = 1 - (2 * q + 1) / 10.0, phi = q * kPi * (3 - std::sqrt(5.0));

@@ -3,6 +3,7 @@
 // Kirchhoff-Helmholtz integral p(x) = int_S [p(y) dG/dn_y - G(x, y) g(y)] dS_y, G = e^{-ikr} / 4 pi r,
 // n out of the body, over the 8 mirror images of an octant grid, with the exterior solution's
 // surface pressure and the *prescribed* Neumann data g, so that the fit's boundary error shows.
+#include <complex>
 #include <functional>
 #include <vector>
 
@@ -16,5 +17,14 @@ double far_field_vs_kirchhoff_helmholtz(const kernels::transfer::Multipole& expa
                                         const kernels::transfer::ExteriorSolution& solution,
                                         const kernels::transfer::SurfacePoints& grid,
                                         const std::function<std::vector<double>(int)>& g, double r_m);
+
+// The same for any surface quadrature (points, outward unit normals, weights) with the exterior
+// solution's surface pressure p and the prescribed g = dp/dn at its points.
+double far_field_vs_kirchhoff_helmholtz(const kernels::transfer::Multipole& expansion,
+                                        const std::vector<Eigen::Vector3d>& points_m,
+                                        const std::vector<Eigen::Vector3d>& normals,
+                                        const std::vector<double>& weights_m2,
+                                        const std::vector<std::complex<double>>& pressure,
+                                        const std::vector<double>& g, double r_m);
 
 }  // namespace clatter::reference
