@@ -3,13 +3,12 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <span>
 
 #include "banks/modal/modal_fem.hpp"
 #include "banks/modal/modal_job.hpp"
@@ -21,6 +20,7 @@
 #include "io/sweep_files.hpp"
 #include "kernels/fem/object_mesh.hpp"
 #include "kernels/mass_properties.hpp"
+#include "kernels/transfer/mesh_transfer.hpp"
 #include "kernels/transfer/multipole.hpp"
 #include "mpi/comm.hpp"
 
@@ -32,33 +32,23 @@ double since(clock_type::time_point t0) { return std::chrono::duration<double>(c
 
 namespace kt = kernels::transfer;
 
-// STUB until the general-shape transfer lands: each surface face a free monopole i omega rho u.n A.
-kt::ModeTransfer stub_transfer(const model::ModalEntry& e, std::size_t mode, const model::TransferSettings& s) {
-  const double omega = 2 * std::numbers::pi * e.frequencies_hz[mode], k = omega / s.sound_speed_m_s;
-  double rho = 0;
-  for (const auto& x : e.surface_nodes_m) rho = std::max(rho, std::hypot(x[0], x[1], x[2]));
-  const int order = kt::source_order(k, rho);
-  kt::ModeTransfer t;
-  t.expansion.k_rad_m = k;
-  t.expansion.order = order;
-  t.expansion.coefficients.assign(static_cast<std::size_t>((order + 1) * (order + 1)), 0.0);
+// One mode's transfer for the entry's own surface (kernels/transfer/mesh_transfer.hpp), in the
+// record the modal kind's transfer stage gathers.
+kt::ModeTransfer object_mode_transfer(const model::ModalEntry& e, std::size_t mode, const model::TransferSettings& s) {
   const std::size_t per_mode = 3 * e.surface_nodes_m.size();
-  for (const auto& f : e.surface_faces) {
-    Eigen::Vector3d p[3], u = Eigen::Vector3d::Zero();
-    for (int c = 0; c < 3; ++c) {
-      const auto& x = e.surface_nodes_m[static_cast<std::size_t>(f[static_cast<std::size_t>(c)])];
-      p[c] = {x[0], x[1], x[2]};
-      const double* v = e.shapes.data() + mode * per_mode + 3 * static_cast<std::size_t>(f[static_cast<std::size_t>(c)]);
-      u += Eigen::Vector3d(v[0], v[1], v[2]) / 3;
-    }
-    const Eigen::Vector3d n2 = (p[1] - p[0]).cross(p[2] - p[0]);
-    const std::complex<double> strength(0, omega * s.air_density_kg_m3 * 0.5 * u.dot(n2));
-    kt::add_monopole(k, order, (p[0] + p[1] + p[2]) / 3, strength, t.expansion.coefficients);
-  }
-  t.expansion.order = kt::truncation_order(t.expansion.coefficients, order, s.tail_tolerance);
-  t.expansion.coefficients.resize(static_cast<std::size_t>((t.expansion.order + 1) * (t.expansion.order + 1)));
-  t.attempts = 1;
-  return t;
+  const std::span<const double> shape(e.shapes.data() + mode * per_mode, per_mode);
+  const auto t = kt::solve_mesh_mode_transfer(e.surface_nodes_m, e.surface_faces, shape,
+                                              2 * std::numbers::pi * e.frequencies_hz[mode], s);
+  kt::ModeTransfer out;
+  out.expansion = t.expansion;
+  out.boundary_residual = t.boundary_residual;
+  out.normal_fraction = t.normal_fraction;
+  out.amplification = t.amplification;
+  out.source_depth = t.source_depth_m;  // metres here: an object has no semi-axis a to scale by
+  out.attempts = t.attempts;
+  out.sources = t.sources + t.dipoles;
+  out.fit_points = t.fit_points;
+  return out;
 }
 
 }  // namespace
@@ -146,7 +136,7 @@ model::ObjectEntry build_object_entry(MPI_Comm group, const ObjectSpec& spec, st
   for (const auto& x : entry.surface_nodes_m) e.radius_m = std::max(e.radius_m, std::hypot(x[0], x[1], x[2]));
   const auto& transfer = spec.header.transfer;
   compute_modal_transfer(
-      group, [&transfer](const model::ModalEntry& m, std::size_t mode) { return stub_transfer(m, mode, transfer); }, entry);
+      group, [&transfer](const model::ModalEntry& m, std::size_t mode) { return object_mode_transfer(m, mode, transfer); }, entry);
   entry.cost.total_s = since(t_start);
   if (mpi::rank(group) != 0) return {};
   return e;
