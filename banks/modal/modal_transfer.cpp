@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <complex>
 #include <cstdint>
@@ -109,10 +110,21 @@ void compute_modal_transfer(MPI_Comm group, const ModeTransferSolver& solve, mod
   RankModes mine;
   // In rounds of one mode per rank, polled between rounds: SIGTERM stops the task within a mode.
   const std::size_t n = entry.frequencies_hz.size(), ranks = static_cast<std::size_t>(size);
+  // A long entry (an object's hundred modes at tens of seconds each) says how far it is, at most
+  // every 30 s, from the group's rank 0.
+  auto said = t0;
   for (std::size_t round = 0; round * ranks < n; ++round) {
     mpi::poll_interrupt(group, "the next transfer round");
     const std::size_t i = round * ranks + static_cast<std::size_t>(rank);
     if (i < n) mine.add(i, solve(entry, i));
+    const auto now = std::chrono::steady_clock::now();
+    if (rank == 0 && now - said > std::chrono::seconds(30)) {
+      const std::size_t done = std::min(n, (round + 1) * ranks);
+      const double spent_s = std::chrono::duration<double>(now - t0).count();
+      spdlog::info("transfer: {} of {} modes in {:.0f} s, ETA {:.0f} s", done, n, spent_s,
+                   spent_s / static_cast<double>(done) * static_cast<double>(n - done));
+      said = now;
+    }
   }
   const double own_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto core_s = mpi::gather(group, own_s);
