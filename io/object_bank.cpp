@@ -102,9 +102,6 @@ model::ObjectBank read_object_bank(const std::string& path) {
     const std::string g = "/entries/" + name;
     model::ObjectEntry e = read_object_entry(file, g);
     check_modal_entry_solve(file, g, e.modal, h.solve);
-    for (const double f_hz : e.modal.frequencies_hz)
-      if (f_hz > h.f_max_hz * (1 + 1e-9))
-        throw InputError(fmt::format("{}: {}: a mode at {} Hz lies above the bank's f_max_hz {}", path, g, f_hz, h.f_max_hz));
     if (!keys.insert(e.key).second) throw InputError(fmt::format("{}: {}: key '{}' appears twice", path, g, e.key));
     const std::string cost = "/provenance/run/entries/" + name;
     if (exists(file, cost)) e.modal.cost = read_modal_entry_cost(file, cost);
