@@ -366,11 +366,11 @@ const io::Schema& sim_schema() {
           {"plate.thickness_m", 0.006, "its thickness [m]", Range{0, 100, true}},
           {"plate.sides", std::int64_t{32}, "sides of its polygonal outline", Range{3, 1000}},
           {"plate.position_m", io::RealList{0, 0, 0.5}, "its centre at the start [m]"},
-          {"plate.tilt_deg", 10.0, "its tilt about the x axis at the start [deg]", Range{-90, 90}},
+          {"plate.tilt_deg", 40.0, "its tilt about the x axis at the start [deg]", Range{-90, 90}},
           {"plate.velocity_m_s", io::RealList{0, 0, 0}, "its starting velocity [m/s]"},
           {"plate.kick_m_s", 0.5, "speed each piece gets away from the impact point, in the plate's plane, as it breaks [m/s]",
            Range{0, 100}},
-          {"plate.break_speed_m_s", 0.0, "the plate breaks at its first contact approaching faster than this (0: its first "
+          {"plate.break_speed_m_s", 4.0, "the plate breaks at its first contact approaching faster than this (0: its first "
                                          "contact) [m/s]; it bounces whole before", Range{0, 1000}},
           {"plate.fracture_time_s", 2e-4, "duration of each fracture impulse (the scene's contact_time_s) [s]", Range{0, 1, true}},
           {"plate.gap_m", 2e-4, "pieces collide as if this much smaller on each side, so neighbours start apart [m]",

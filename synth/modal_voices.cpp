@@ -177,12 +177,16 @@ void ModalSource::add_modes(const io::Scene& scene, const io::SceneObject& o, in
 ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& model, int rate_hz) {
   const io::SceneObject& o = *model.object;
   ModalVoice v;
-  if (!scene.materials.at(o.material).damping)
-    throw InputError(fmt::format("{}: materials.{}: modal sound needs rayleigh_alpha_1_s and rayleigh_beta_s", scene.path, o.material));
+  auto need_damping = [&] {
+    if (!scene.materials.at(o.material).damping)
+      throw InputError(fmt::format("{}: materials.{}: modal sound needs rayleigh_alpha_1_s and rayleigh_beta_s", scene.path,
+                                   o.material));
+  };
   // 003 section 5.4: below the threshold, the object's own model when a bank holds it.
   if (o.base_frequency_hz > 0 && o.base_frequency_hz < options_.proxy_above_hz) {
     const auto [own, b] = own_model_of(scene, o, v.own_model_missing);
     if (own) {
+      need_damping();
       v.own_model = true;
       v.bank = b;
       v.object_entry = own;
@@ -197,6 +201,7 @@ ModalVoice ModalSource::make_voice(const io::Scene& scene, const ObjectModel& mo
     }
   }
   v.bank = bank_for(scene, o);
+  need_damping();
   const model::ModalBank& bank = banks_[v.bank];
   v.frame = kernels::modal::modal_proxy_frame(model.proxy);
   v.entry = indices_[v.bank]->nearest(v.frame.unit_axes);

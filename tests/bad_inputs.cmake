@@ -50,7 +50,7 @@ clatter_error_test(bad_ranks_per_task_np2 2 "--ranks-per-task 3;divide the 2 MPI
 clatter_error_test(bad_merge_not_results 0 "nowhere.tasks: not a sweep results folder (no sweep.toml)"
                    merge --results nowhere.tasks -o out.h5)
 clatter_error_test(bad_plan_ranks 0 "--ranks 0;must be >= 1" plan -c ${tiny} --ranks 0)
-clatter_error_test(bad_plan_kind 0 "--kind: no bank kind 'lamb' (known: pan, modal, ground)" plan --kind lamb)
+clatter_error_test(bad_plan_kind 0 "--kind: no bank kind 'lamb' (known: pan, modal, object, ground)" plan --kind lamb)
 set(probe_args probe ${good_bank} --proxy 0.35,0.2 --field 1)
 clatter_error_test(bad_probe_rate 0 "--rate -5;must be >= 0 Hz" ${probe_args} --point 1,0.5,0.5 --rate -5)
 clatter_error_test(bad_probe_point_nan 0 "--point 1,nan,0.5;coordinates must be finite" ${probe_args} --point 1,nan,0.5)
@@ -64,7 +64,7 @@ set_tests_properties(bad_probe_rate bad_probe_point_nan bad_probe_entry_on_pan b
 clatter_error_test(bad_plan_ground 0 "plan: no cost model for a ground bank yet" plan -c ${PROJECT_SOURCE_DIR}/configs/ground-demo.toml)
 clatter_error_test(bad_plan_empty_config 0 "plan: several of the bank kinds' schemas accept this config;--kind" plan -c ${bad}/empty.toml)
 clatter_synth_error_test(bad_synth_option "not expected: --frobnicate;clatter-synth --help" -i ${bad_in}/good.json -b ${good_bank} --frobnicate)
-clatter_synth_error_test(bad_synth_missing_bank "give a PAN bank (-b), a modal bank (-m) or a ground bank (-g), or several" -i ${bad_in}/good.json)
+clatter_synth_error_test(bad_synth_missing_bank "give a PAN bank (-b), a modal bank (-m), an object bank (-O) or a ground bank (-g), or several" -i ${bad_in}/good.json)
 clatter_synth_error_test(bad_synth_rate "--rate 100;must be in [8000, 384000] Hz" -i ${bad_in}/good.json -b ${good_bank} --rate 100)
 clatter_synth_error_test(bad_synth_format "--format: mp3 not in {float,pcm24}" -i ${bad_in}/good.json -b ${good_bank} --format mp3)
 clatter_synth_error_test(bad_synth_pcm24_range "--format pcm24;beyond the 24-bit range;add --normalize"
@@ -166,7 +166,7 @@ foreach(case
 endforeach()
 clatter_error_test(bad_bank_info_corrupt 0 "corrupt.h5;cannot be read: corrupt or truncated file" info ${bad_banks}/corrupt.h5)
 clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads version 2" info ${bad_banks}/wrong_version.h5)
-clatter_error_test(bad_bank_info_wrong_format 0 "wrong_format.h5: format 'clatter-fdtd-raw' is not a bank's;clatter-pan-bank, clatter-modal-bank, clatter-ground-bank"
+clatter_error_test(bad_bank_info_wrong_format 0 "wrong_format.h5: format 'clatter-fdtd-raw' is not a bank's;clatter-pan-bank, clatter-modal-bank, clatter-object-bank, clatter-ground-bank"
                    info ${bad_banks}/wrong_format.h5)
 clatter_error_test(bad_bank_info_no_format 0 "no_format.h5: not a Clatter file (no 'format' attribute);expected a bank"
                    info ${bad_banks}/no_format.h5)

@@ -57,7 +57,7 @@ double object_edge_length_m(const ObjectSpec& spec, const model::Material& mater
   return material.shear_speed_m_s() / spec.header.f_max_hz / spec.header.elements_per_wavelength;
 }
 
-model::ObjectEntry build_object_entry(MPI_Comm group, const ObjectSpec& spec, std::size_t index) {
+model::ObjectEntry build_object_entry(MPI_Comm group, const ObjectSpec& spec, std::size_t index, bool with_transfer) {
   const auto t_start = clock_type::now();
   const ObjectSource& o = spec.objects.at(index);
   const model::Material& material = o.material;
@@ -135,8 +135,10 @@ model::ObjectEntry build_object_entry(MPI_Comm group, const ObjectSpec& spec, st
   store_modes(group, modes, mesh.mesh, mesh.boundary, material, entry);
   for (const auto& x : entry.surface_nodes_m) e.radius_m = std::max(e.radius_m, std::hypot(x[0], x[1], x[2]));
   const auto& transfer = spec.header.transfer;
-  compute_modal_transfer(
-      group, [&transfer](const model::ModalEntry& m, std::size_t mode) { return object_mode_transfer(m, mode, transfer); }, entry);
+  if (with_transfer)
+    compute_modal_transfer(
+        group, [&transfer](const model::ModalEntry& m, std::size_t mode) { return object_mode_transfer(m, mode, transfer); },
+        entry);
   entry.cost.total_s = since(t_start);
   if (mpi::rank(group) != 0) return {};
   return e;

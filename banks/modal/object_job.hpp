@@ -16,7 +16,10 @@ namespace clatter::jobs {
 
 // Collective on `group`; the full entry on the group's rank 0, an empty one elsewhere. Throws
 // TaskFailure (mesh, count check, residual) or Interrupted, alike on every rank.
-model::ObjectEntry build_object_entry(MPI_Comm group, const ObjectSpec& spec, std::size_t object);
+// with_transfer false leaves the transfer out (an entry no bank may hold: checks of the modes alone,
+// which would otherwise spend nearly all their time on it).
+model::ObjectEntry build_object_entry(MPI_Comm group, const ObjectSpec& spec, std::size_t object,
+                                      bool with_transfer = true);
 
 TaskWriter run_object_task(MPI_Comm group, const ObjectSpec& spec, const ObjectTask& task);
 

@@ -68,7 +68,7 @@ model::ObjectEntry solve(const io::TriangleMesh& mesh, const model::Material& m,
   o.mesh_hash = io::mesh_hash(mesh);
   o.material = m;
   spec.objects.push_back(o);
-  auto e = jobs::build_object_entry(MPI_COMM_WORLD, spec, 0);
+  auto e = jobs::build_object_entry(MPI_COMM_WORLD, spec, 0, false);  // the modes alone (the transfer: MeshTransfer*)
   if (root())
     std::printf("object entry: %zu modes %.6g-%.6g Hz, %lld dofs, h %.4g m, thinnest %.4g m, %.1f s\n", e.modal.modes(),
                 e.modal.frequencies_hz.front(), e.modal.frequencies_hz.back(), static_cast<long long>(e.modal.mesh.dofs),
