@@ -71,6 +71,32 @@ const io::Schema& modal_schema() {
   return schema;
 }
 
+model::ModalSolveSettings solve_settings(const io::Config& config) {
+  model::ModalSolveSettings solve;
+  solve.cluster_gap = config.real("modes.cluster_gap");
+  solve.tolerance = config.real("solver.tolerance");
+  solve.residual_limit = config.real("solver.residual_limit");
+  solve.max_iterations = config.integer("solver.max_iterations");
+  solve.nev_per_shift = config.integer("solver.nev_per_shift");
+  // degenerate_gap keeps its default: no key sets it (it splits far below any mesh asymmetry).
+  if (!(solve.residual_limit > solve.tolerance))
+    throw InputError(fmt::format("solver.residual_limit = {} must exceed solver.tolerance = {}: the solver stops at "
+                                 "its tolerance", solve.residual_limit, solve.tolerance));
+  return solve;
+}
+
+void read_transfer_keys(const io::Config& config, model::TransferSettings& transfer) {
+  transfer.sound_speed_m_s = config.real("medium.c_m_s");
+  transfer.air_density_kg_m3 = config.real("medium.rho_kg_m3");
+  transfer.sources_per_wavelength = config.real("transfer.sources_per_wavelength");
+  transfer.residual_target = config.real("transfer.residual_target");
+  transfer.tail_tolerance = config.real("transfer.tail_tolerance");
+}
+
+kernels::fem::EllipsoidMeshBounds mesh_bounds(const io::Config& config) {
+  return {config.real("mesh.max_radius_edge"), config.real("mesh.min_dihedral_deg"), config.real("mesh.min_jacobian_ratio")};
+}
+
 ModalSpec make_modal_spec(const io::Config& config) {
   ModalSpec spec;
   auto& h = spec.header;
@@ -82,28 +108,15 @@ ModalSpec make_modal_spec(const io::Config& config) {
                                  "material's Rayleigh damping",
                                  spec.material_table, h.material.name));
   h.min_ratio = config.real("patch.min_ratio");
+  h.solve = solve_settings(config);
   h.solve.f_max_multiple = config.real("modes.f_max_multiple");
-  h.solve.cluster_gap = config.real("modes.cluster_gap");
-  h.solve.tolerance = config.real("solver.tolerance");
-  h.solve.residual_limit = config.real("solver.residual_limit");
-  h.solve.max_iterations = config.integer("solver.max_iterations");
-  h.solve.nev_per_shift = config.integer("solver.nev_per_shift");
-  // h.solve.degenerate_gap keeps its default: no key sets it (it splits far below any mesh asymmetry).
   h.elements_per_wavelength = config.real("mesh.elements_per_wavelength");
   h.coarse_edge_m = config.real("mesh.coarse_edge_m");
   h.transfer.method = "equivalent sources (monopoles on a layer under the surface, 8 parity classes), multipole "
                       "about the centre";
-  h.transfer.sound_speed_m_s = config.real("medium.c_m_s");
-  h.transfer.air_density_kg_m3 = config.real("medium.rho_kg_m3");
+  read_transfer_keys(config, h.transfer);
   h.transfer.points_per_source = config.real("transfer.points_per_source");
-  h.transfer.sources_per_wavelength = config.real("transfer.sources_per_wavelength");
-  h.transfer.residual_target = config.real("transfer.residual_target");
-  h.transfer.tail_tolerance = config.real("transfer.tail_tolerance");
-  spec.bounds = {config.real("mesh.max_radius_edge"), config.real("mesh.min_dihedral_deg"),
-                 config.real("mesh.min_jacobian_ratio")};
-  if (!(h.solve.residual_limit > h.solve.tolerance))
-    throw InputError(fmt::format("solver.residual_limit = {} must exceed solver.tolerance = {}: the solver stops at "
-                                 "its tolerance", h.solve.residual_limit, h.solve.tolerance));
+  spec.bounds = mesh_bounds(config);
   const auto& list = config.reals("patch.samples");
   if (list.empty()) throw InputError("patch.samples = []: a modal bank needs at least one ellipsoid");
   if (list.size() / 3 > kMaxSamples)

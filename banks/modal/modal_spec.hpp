@@ -22,6 +22,13 @@ struct ModalSpec {
   kernels::fem::EllipsoidMeshBounds bounds;  // a mesh outside them fails its task
 };
 
+// What the modal and object kinds' configs share (the same keys): the solve's settings from
+// modes.cluster_gap and solver.* (InputError unless residual_limit > tolerance; f_max_multiple left
+// at its default), the medium.* and transfer.* keys both schemas have, and the mesh's bounds.
+model::ModalSolveSettings solve_settings(const io::Config& config);
+void read_transfer_keys(const io::Config& config, model::TransferSettings& transfer);
+kernels::fem::EllipsoidMeshBounds mesh_bounds(const io::Config& config);
+
 // Reads the material table (material.table, or the built-in configs/materials.toml) and checks
 // every key and combination; InputError naming the key and value.
 ModalSpec make_modal_spec(const io::Config& config);

@@ -1,5 +1,7 @@
 #include "banks/modal/object_spec.hpp"
 
+#include "banks/modal/modal_spec.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -105,26 +107,14 @@ ObjectSpec make_object_spec(const io::Config& config) {
   ObjectSpec spec;
   auto& h = spec.header;
   h.f_max_hz = config.real("modes.f_max_hz");
-  h.solve.cluster_gap = config.real("modes.cluster_gap");
-  h.solve.tolerance = config.real("solver.tolerance");
-  h.solve.residual_limit = config.real("solver.residual_limit");
-  h.solve.max_iterations = config.integer("solver.max_iterations");
-  h.solve.nev_per_shift = config.integer("solver.nev_per_shift");
+  h.solve = solve_settings(config);
   h.elements_per_wavelength = config.real("mesh.elements_per_wavelength");
   h.elements_through_thickness = static_cast<std::int32_t>(config.integer("mesh.elements_through_thickness"));
   h.proxy_above_hz = config.real("objects.proxy_above_hz");
   h.transfer.method = "equivalent sources on an inner offset of the surface, multipole about the centre of mass "
                       "(docs/transfer.md \"Any closed mesh\")";
-  h.transfer.sound_speed_m_s = config.real("medium.c_m_s");
-  h.transfer.air_density_kg_m3 = config.real("medium.rho_kg_m3");
-  h.transfer.sources_per_wavelength = config.real("transfer.sources_per_wavelength");
-  h.transfer.residual_target = config.real("transfer.residual_target");
-  h.transfer.tail_tolerance = config.real("transfer.tail_tolerance");
-  spec.bounds = {config.real("mesh.max_radius_edge"), config.real("mesh.min_dihedral_deg"),
-                 config.real("mesh.min_jacobian_ratio")};
-  if (!(h.solve.residual_limit > h.solve.tolerance))
-    throw InputError(fmt::format("solver.residual_limit = {} must exceed solver.tolerance = {}: the solver stops at "
-                                 "its tolerance", h.solve.residual_limit, h.solve.tolerance));
+  read_transfer_keys(config, h.transfer);
+  spec.bounds = mesh_bounds(config);
 
   std::map<std::string, std::size_t> seen;  // key -> object
   auto add = [&](ObjectSource o) {
