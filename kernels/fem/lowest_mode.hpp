@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "kernels/fem/assembly.hpp"
+#include "kernels/fem/tetgen_fill.hpp"
 
 namespace clatter::kernels::fem {
 
@@ -56,6 +57,11 @@ LowestMode lowest_free_mode_of(const Tet10Mesh& mesh, const model::Material& mat
 // straight edge midpoints, shared between elements; elements positively oriented. Throws
 // std::invalid_argument as above.
 Tet10Mesh tetrahedralize_surface(const std::vector<std::array<double, 3>>& vertices_m,
+                                 const std::vector<std::array<int, 3>>& triangles, double edge_length_m);
+
+// The same fill's linear tetrahedra (TetGen's positive orientation; the stress solve of breakable
+// bodies, kernels/fracture/).
+LinearMesh tetrahedralize_linear(const std::vector<std::array<double, 3>>& vertices_m,
                                  const std::vector<std::array<int, 3>>& triangles, double edge_length_m);
 
 // The volume enclosed by a closed, outward-oriented triangle mesh (divergence theorem), m^3;

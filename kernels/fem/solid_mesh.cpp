@@ -122,14 +122,19 @@ double enclosed_volume_m3(const std::vector<P3>& vertices, const std::vector<std
   return six_v / 6;
 }
 
-Tet10Mesh tetrahedralize_surface(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
+LinearMesh tetrahedralize_linear(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
                                  double edge_length_m) {
   if (!(edge_length_m > 0) || !std::isfinite(edge_length_m))
     refuse("the edge length must be positive (" + std::to_string(edge_length_m) + " m)");
   check_surface(vertices, triangles);
   if (!(enclosed_volume_m3(vertices, triangles) > 0))
     refuse("the surface encloses no positive volume (triangles clockwise seen from outside?)");
-  LinearMesh linear = run_tetgen(vertices, triangles, edge_length_m);
+  return run_tetgen(vertices, triangles, edge_length_m);
+}
+
+Tet10Mesh tetrahedralize_surface(const std::vector<P3>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                                 double edge_length_m) {
+  LinearMesh linear = tetrahedralize_linear(vertices, triangles, edge_length_m);
   return quadratic_mesh(linear);
 }
 
