@@ -67,12 +67,29 @@ struct SceneEvent {
   std::string where;                    // "FILE: events[i]" or "FILE:line", for messages
 };
 
+// What the simulator did at one fracture (003 section 3), for the reader of a scene: the energy
+// budget that decided the pieces. clatter-synth does not read it (the events carry the sound).
+struct SceneFracture {
+  double t_s = 0;
+  int body = 0;                 // the object that broke
+  std::vector<int> pieces;      // the objects it became
+  double max_principal_pa = 0;  // the largest principal stress at the step (Rankine)
+  double strength_pa = 0, toughness_j_m2 = 0;
+  double strain_energy_j = 0;   // E_S of the quasistatic solve
+  double fracture_area_m2 = 0;  // A_F
+  double fracture_energy_j = 0; // E_F = G_c A_F <= eta E_S
+  double kinetic_energy_gained_j = 0;  // Delta E_K = E_S - E_F when fracture impulses are on, else 0
+  double tau_s = 0;             // the fracture impulses' duration (003 eq. 5)
+  std::size_t tets = 0;         // of the broken body's stress mesh
+};
+
 struct Scene {
   std::string path;  // for messages
   std::map<std::string, model::Material> materials;
   std::string ground_material;
   std::vector<SceneObject> objects;
   std::vector<SceneEvent> events;  // sorted by time
+  std::vector<SceneFracture> fractures;  // written by write_scene, not read back (read_scene skips it)
   std::vector<std::array<double, 3>> listeners_m;
   double duration_s = 0;           // 0: until the last event's sound has died out
 };

@@ -127,6 +127,13 @@ void write_scene(const Scene& scene, const std::string& path, const std::string&
   for (const auto& o : scene.objects) objects.push_back(object_json(o, meshes.count(o.id) ? meshes.at(o.id) : ""));
   for (const auto& e : scene.events) events.push_back(event_json(e));
   for (const auto& l : scene.listeners_m) listeners.push_back({{"position_m", l}});
+  std::vector<ordered_json> fractures;
+  for (const auto& f : scene.fractures)
+    fractures.push_back({{"t_s", f.t_s}, {"body", f.body}, {"pieces", f.pieces}, {"max_principal_pa", f.max_principal_pa},
+                         {"strength_pa", f.strength_pa}, {"toughness_j_m2", f.toughness_j_m2},
+                         {"strain_energy_j", f.strain_energy_j}, {"fracture_area_m2", f.fracture_area_m2},
+                         {"fracture_energy_j", f.fracture_energy_j}, {"kinetic_energy_gained_j", f.kinetic_energy_gained_j},
+                         {"tau_s", f.tau_s}, {"tets", f.tets}});
   const std::string temp = path + ".partial";
   register_temporary(temp);
   {
@@ -139,6 +146,7 @@ void write_scene(const Scene& scene, const std::string& path, const std::string&
     if (scene.duration_s > 0) out << "  \"duration_s\": " << ordered_json(scene.duration_s).dump() << ",\n";
     write_list(out, "listeners", listeners);
     write_list(out, "objects", objects);
+    if (!fractures.empty()) write_list(out, "fractures", fractures);
     write_list(out, "events", events, true);
     out << "}\n";
     out.flush();

@@ -104,8 +104,24 @@ void World::add_body(const BodySpec& s) {
 void World::remove_body(int id) {
   auto it = bodies_.find(id);
   if (it == bodies_.end()) throw std::invalid_argument(fmt::format("World::remove_body: no body {}", id));
+  for (auto p = ignored_.begin(); p != ignored_.end();)
+    if (p->first == id || p->second == id) {
+      const int other = p->first == id ? p->second : p->first;
+      bodies_.at(other)->body->setIgnoreCollisionCheck(it->second->body.get(), false);
+      p = ignored_.erase(p);
+    } else {
+      ++p;
+    }
   impl_->world.removeRigidBody(it->second->body.get());
   bodies_.erase(it);
+}
+
+void World::ignore_until_apart(int a, int b) {
+  btRigidBody& ra = *bodies_.at(a)->body;
+  btRigidBody& rb = *bodies_.at(b)->body;
+  ra.setIgnoreCollisionCheck(&rb, true);
+  rb.setIgnoreCollisionCheck(&ra, true);
+  ignored_.insert({std::min(a, b), std::max(a, b)});
 }
 
 BodyState World::state(int id) const {
@@ -123,6 +139,20 @@ void World::step() {
   }
   // maxSubSteps = 0: exactly one step of dt_s (no interpolation, no accumulator).
   impl_->world.stepSimulation(impl_->options.dt_s, 0, impl_->options.dt_s);
+  for (auto p = ignored_.begin(); p != ignored_.end();) {
+    btRigidBody& ra = *bodies_.at(p->first)->body;
+    btRigidBody& rb = *bodies_.at(p->second)->body;
+    btVector3 a_lo, a_hi, b_lo, b_hi;
+    ra.getAabb(a_lo, a_hi);
+    rb.getAabb(b_lo, b_hi);
+    if (TestAabbAgainstAabb2(a_lo, a_hi, b_lo, b_hi)) {
+      ++p;
+      continue;
+    }
+    ra.setIgnoreCollisionCheck(&rb, false);
+    rb.setIgnoreCollisionCheck(&ra, false);
+    p = ignored_.erase(p);
+  }
   contacts_.clear();
   btDispatcher& d = impl_->dispatcher;
   for (int m = 0; m < d.getNumManifolds(); ++m) {

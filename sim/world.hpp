@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "core/vec3.hpp"
@@ -61,6 +63,9 @@ class World {
 
   void add_body(const BodySpec& spec);
   void remove_body(int id);
+  // The pieces of one fracture start interlocked (a piece that is not convex overlaps its
+  // neighbours' hulls), so a pair given here does not collide until their bounding boxes part.
+  void ignore_until_apart(int a, int b);
   bool has_body(int id) const { return bodies_.count(id) != 0; }
   BodyState state(int id) const;
   std::size_t bodies() const { return bodies_.size(); }
@@ -76,6 +81,7 @@ class World {
   struct Body;
   std::unique_ptr<Impl> impl_;
   std::map<int, std::unique_ptr<Body>> bodies_;
+  std::set<std::pair<int, int>> ignored_;  // pairs that do not collide yet (a < b)
   std::vector<ContactSample> contacts_;
   std::size_t steps_ = 0;
   double dt_s_ = 0;
