@@ -410,7 +410,8 @@ FracturePattern fracture_pattern(const TetMesh& mesh, const std::vector<double>&
     for (int t = 0; t < tets; ++t) {
       const auto& n = mesh.tets[t];
       for (int e = 0; e < 6; ++e)
-        if (region[n[kEdge[e][0]]] != region[n[kEdge[e][1]]]) area_m2 += quad_area_m2[static_cast<std::size_t>(t) * 6 + e];
+        if (region[n[kEdge[e][0]]] != region[n[kEdge[e][1]]])
+          area_m2 += quad_area_m2[static_cast<std::size_t>(t) * 6 + e];
     }
     if (settings.fracture_energy_j_m2 * area_m2 > budget_j) break;
     accepted.swap(region);

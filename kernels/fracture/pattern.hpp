@@ -30,7 +30,7 @@ struct FractureTriangle {
 };
 
 struct Piece {
-  TetMesh mesh;                             // its tetrahedra (whole input tets and parts of split ones), nodes compacted
+  TetMesh mesh;                             // its tetrahedra (whole input tets and parts of cut ones), nodes compacted
   std::vector<int> source_tets;             // per tet of `mesh`: the input tetrahedron it lies in
   std::vector<std::array<int, 3>> surface;  // its closed outward boundary, over mesh.nodes_m
 };

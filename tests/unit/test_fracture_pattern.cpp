@@ -306,6 +306,7 @@ TEST(FracturePattern, DenserSeedTakesSmallerRegion) {
   const FracturePattern even = fracture_pattern(bar.box.mesh, density, e_s, s);
   ASSERT_EQ(even.pieces.size(), 2u);
   const double even_share = mesh_volume(even.pieces[0].mesh) / body_m3;
+  std::printf("dense seed's share of the bar: %.3f (alpha 0.15), %.3f (alpha 0)\n", dense_share, even_share);
   EXPECT_GT(even_share, 3.0 / 7);
   EXPECT_LT(even_share, 4.0 / 7);
 }
@@ -321,6 +322,8 @@ TEST(FracturePattern, PiecesPartitionTheBody) {
       const double e_s = 10;  // A_F <= 0.08 m2: a few zigzag cracks of 0.1 m x 0.08 m
       const FracturePattern pat = fracture_pattern(box.mesh, density, e_s, s);
       SCOPED_TRACE(::testing::Message() << "peaked " << peaked << " seed " << seed);
+      std::printf("box 8x5x4, %s density, seed %d: %zu pieces, A_F %.4g m2\n", peaked ? "peaked" : "uniform",
+                  static_cast<int>(seed), pat.pieces.size(), pat.area_m2);
       check_pattern(box, pat, s, e_s);
     }
   // Many pieces: each a few nodes' cells.
@@ -349,7 +352,9 @@ TEST(FracturePattern, MoreStrainEnergyMorePieces) {
         EXPECT_LE(pat.fracture_energy_j, s.eta * cracks * crack_j);
       }
       before = pat.pieces.size();
+      std::printf("%zu ", before);
     }
+    std::printf("pieces (seed %d) for 0.5 .. 24 cracks' energy, unbounded\n", static_cast<int>(seed));
     EXPECT_EQ(before, 60u);  // unbounded energy: max_pieces decides
   }
   // A thousandth of a crack (a few percent of one element face) cuts nothing off, not even one node.
@@ -382,6 +387,8 @@ TEST(FracturePattern, DenseEndBreaksFiner) {
       (x / v < 0.12 ? dense_m3 : sparse_m3) += v;
       ++(x / v < 0.12 ? dense_n : sparse_n);
     }
+    std::printf("seed %d: %d dense pieces of mean %.3g m3, %d sparse of %.3g m3\n", static_cast<int>(seed), dense_n,
+                dense_m3 / std::max(dense_n, 1), sparse_n, sparse_m3 / std::max(sparse_n, 1));
     ASSERT_GT(dense_n, 0);
     ASSERT_GT(sparse_n, 0);
     EXPECT_LT(dense_m3 / dense_n, sparse_m3 / sparse_n) << "seed " << seed << ": " << dense_n << " dense pieces, "
