@@ -1,7 +1,7 @@
 #include "kernels/fracture/tet_mesh.hpp"
 
 #include <algorithm>
-#include <map>
+#include <utility>
 
 #include "kernels/fem/lowest_mode.hpp"
 
@@ -16,21 +16,31 @@ double tet_volume_m3(const TetMesh& mesh, int t) {
 std::vector<BoundaryFace> boundary_faces(const TetMesh& mesh) {
   // Local faces opposite vertex 0..3, counter-clockwise seen from outside a positive tetrahedron.
   static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  std::map<std::array<int, 3>, int> count;
-  for (const auto& t : mesh.tets)
-    for (const auto& f : kFace) {
-      std::array<int, 3> key{t[f[0]], t[f[1]], t[f[2]]};
+  // One sorted array of (sorted nodes, tet*4 + face) rather than a map: the fracture pattern calls
+  // this on every piece, hundreds of thousands of tetrahedra in all.
+  std::vector<std::pair<std::array<int, 3>, int>> keys;
+  keys.reserve(mesh.tets.size() * 4);
+  for (std::size_t i = 0; i < mesh.tets.size(); ++i)
+    for (int f = 0; f < 4; ++f) {
+      const auto& t = mesh.tets[i];
+      std::array<int, 3> key{t[kFace[f][0]], t[kFace[f][1]], t[kFace[f][2]]};
       std::sort(key.begin(), key.end());
-      ++count[key];
+      keys.emplace_back(key, static_cast<int>(i * 4 + f));
     }
+  std::sort(keys.begin(), keys.end());
+  std::vector<char> single(keys.size(), 0);
+  for (std::size_t a = 0, b = 0; a < keys.size(); a = b) {
+    for (b = a + 1; b < keys.size() && keys[b].first == keys[a].first; ++b) {
+    }
+    if (b == a + 1) single[keys[a].second] = 1;
+  }
   std::vector<BoundaryFace> out;
   for (std::size_t i = 0; i < mesh.tets.size(); ++i)
-    for (const auto& f : kFace) {
-      const auto& t = mesh.tets[i];
-      std::array<int, 3> key{t[f[0]], t[f[1]], t[f[2]]};
-      std::sort(key.begin(), key.end());
-      if (count[key] == 1) out.push_back({{t[f[0]], t[f[1]], t[f[2]]}, static_cast<int>(i)});
-    }
+    for (int f = 0; f < 4; ++f)
+      if (single[i * 4 + f]) {
+        const auto& t = mesh.tets[i];
+        out.push_back({{t[kFace[f][0]], t[kFace[f][1]], t[kFace[f][2]]}, static_cast<int>(i)});
+      }
   return out;
 }
 
