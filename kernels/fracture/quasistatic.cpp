@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <numeric>
 #include <stdexcept>
@@ -30,6 +31,15 @@ Eigen::Matrix<double, 3, 6> rigid_block(const Vec3& r_m) {
     for (int i = 0; i < 3; ++i) phi(i, 3 + k) = w[i];
   }
   return phi;
+}
+
+// Debian's serial OpenBLAS (libopenblas0-serial, behind CHOLMOD's supernodal BLAS calls) keeps a
+// buffer pool without locks: two concurrent BLAS calls corrupt each other's results (seen as
+// wrong stresses in Quasistatic.ConcurrentSolvesAgree). Every CHOLMOD call that reaches BLAS
+// (factorize, solve) holds this lock, so solvers and solves may run on several threads.
+std::mutex& blas_mutex() {
+  static std::mutex m;
+  return m;
 }
 
 int find_root(std::vector<int>& parent, int i) {
@@ -317,7 +327,10 @@ void QuasistaticSolver::Impl::factorize() {
   a.packed = 1;
   factor = cholmod_analyze(&a, &common);
   if (!factor) throw std::runtime_error("quasistatic: CHOLMOD analysis failed (status " + std::to_string(common.status) + ")");
-  cholmod_factorize(&a, factor, &common);
+  {
+    const std::lock_guard<std::mutex> lock(blas_mutex());
+    cholmod_factorize(&a, factor, &common);
+  }
   if (common.status != CHOLMOD_OK || factor->minor < factor->n)
     throw std::invalid_argument("quasistatic: V^T K V is not positive definite (CHOLMOD status " +
                                 std::to_string(common.status) + "); is the mesh one connected solid?");
@@ -362,7 +375,7 @@ StressField QuasistaticSolver::solve(const std::vector<NodalForce>& forces) cons
   for (std::size_t i = 0; i < 3 * n; ++i)
     if (im.reduced_index[i] >= 0) rhs[static_cast<std::size_t>(im.reduced_index[i])] = f(static_cast<Eigen::Index>(i));
   // A common of its own per call: cholmod_solve writes its status there, and the factor is only
-  // read, so concurrent solves do not race.
+  // read; the BLAS underneath is serialized (blas_mutex).
   cholmod_common common;
   cholmod_start(&common);
   common.print = 0;
@@ -372,7 +385,11 @@ StressField QuasistaticSolver::solve(const std::vector<NodalForce>& forces) cons
   b.x = rhs.data();
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
-  cholmod_dense* x = cholmod_solve(CHOLMOD_A, im.factor, &b, &common);
+  cholmod_dense* x = nullptr;
+  {
+    const std::lock_guard<std::mutex> lock(blas_mutex());
+    x = cholmod_solve(CHOLMOD_A, im.factor, &b, &common);
+  }
   if (!x) {
     cholmod_finish(&common);
     throw std::runtime_error("quasistatic: CHOLMOD solve failed");

@@ -45,7 +45,8 @@ class QuasistaticSolver {
 
   // Eq. 3: u* = P V (V^T K V)^{-1} V^T P f, then the per-tet stresses. Forces act on nodes;
   // repeated nodes add. std::invalid_argument for a node out of range. Const and safe to call
-  // from several threads at once.
+  // from several threads at once (the back substitutions themselves take turns: the serial
+  // OpenBLAS under CHOLMOD is not reentrant).
   StressField solve(const std::vector<NodalForce>& forces) const;
 
   // Spreads a contact force acting at point_m (body coordinates, near the surface) over the
