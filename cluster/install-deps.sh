@@ -22,6 +22,9 @@ packages=(
   # LAPACK's headers-free link library: kernels/transfer's dense least squares (zgels), run by
   # the same OpenBLAS
   liblapack-dev
+  # CHOLMOD (SuiteSparse): the supernodal Cholesky factor of kernels/fracture's quasistatic
+  # stress solve (003 section 3.1)
+  libsuitesparse-dev
   # small libraries the code uses
   libtoml11-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libsndfile1-dev
   # the synthesizer's kd-tree over the modal bank's ellipsoids (003 section 5.4; header only)
