@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <memory>
 #include <numbers>
+#include <optional>
+#include <set>
 
 #include "core/errors.hpp"
 #include "core/rotation.hpp"
@@ -16,6 +18,8 @@
 #include "kernels/fem/lowest_mode.hpp"
 #include "kernels/mass_properties.hpp"
 #include "kernels/rigid_body.hpp"
+#include "kernels/fracture/tet_mesh.hpp"
+#include "sim/fracture.hpp"
 #include "sim/impacts.hpp"
 #include "sim/rigid_transform.hpp"
 #include "sim/voronoi.hpp"
@@ -98,11 +102,28 @@ class Simulation {
     scene_.materials[body_material_.name] = scene_material(body_material_, false);
     scene_.materials[ground_material_.name] = scene_material(ground_material_, true);
     scene_.ground_material = ground_material_.name;
+    FractureSettings f;
+    f.edge_m = c.real("fracture.edge_m");
+    f.contact_radius_m = c.real("fracture.contact_radius_m");
+    f.eta = c.real("fracture.eta");
+    f.alpha = c.real("fracture.alpha");
+    f.impulses = c.boolean("fracture.impulses");
+    f.toughness_j_m2 = c.real("fracture.toughness_j_m2");
+    f.strength_pa = c.real("fracture.strength_pa");
+    f.min_volume_m3 = c.real("fracture.min_volume_m3");
+    f.min_piece_m3 = c.real("fracture.min_piece_m3");
+    f.seed = static_cast<std::uint64_t>(c.integer("sim.seed"));
+    breakables_ = std::make_unique<Breakables>(f);
+    for (const std::string& b : c.strings("sim.bodies"))
+      if (b != "plate" && b != "pile" && b != "slab" && b != "ball")
+        throw InputError(fmt::format("sim.bodies: \"{}\": expected any of \"plate\", \"slab\", \"ball\", \"pile\"", b));
     const RealList& listeners = c.reals("listeners.positions_m");
     if (listeners.empty()) throw InputError("listeners.positions_m: []: give at least one listener");
     for (std::size_t i = 0; i < listeners.size() / 3; ++i) scene_.listeners_m.push_back(point(listeners, i));
     scene_.duration_s = c.real("sim.duration_s");
   }
+
+  FractureReport on_fracture_;
 
   io::Scene run(SimStats* stats, const Progress& progress) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -110,16 +131,19 @@ class Simulation {
     {
       Stage stage("bodies");
       add_meshes(world);
-      add_plate(world);
-      add_pile(world);
+      if (has("plate")) add_plate(world);
+      if (has("slab")) add_slab(world);
+      if (has("ball")) add_ball(world);
+      if (has("pile")) add_pile(world);
     }
-    if (world.bodies() == 0) throw InputError("nothing to simulate: give meshes.files, plate.pieces or pile.pieces");
+    if (world.bodies() == 0) throw InputError("nothing to simulate: give meshes.files or sim.bodies");
     ImpactRecorder recorder(options_.dt_s, {c_.real("record.impact_window_s"), c_.real("record.sustain_window_s"),
                                             c_.real("record.quiet_s"), c_.real("record.min_speed_m_s"),
                                             c_.real("record.merge_distance_m")});
     const auto steps = static_cast<std::size_t>(std::llround(scene_.duration_s / options_.dt_s));
     SimStats s;
     Stage steps_stage("steps");
+    auto last_report = std::chrono::steady_clock::now();
     for (std::size_t n = 0; n < steps; ++n) {
       {
         Stage stage("bullet");  // ~1e4 calls of ~1 ms: the stage's own cost is negligible
@@ -129,7 +153,13 @@ class Simulation {
       recorder.add_step(static_cast<double>(n) * options_.dt_s, world.contacts());
       s.contact_samples += world.contacts().size();
       if (plate_id_ && world.has_body(plate_id_)) maybe_fracture(world, recorder, static_cast<double>(n + 1) * options_.dt_s, s);
-      if (progress && (n + 1) % std::max<std::size_t>(1, steps / 10) == 0) progress(n + 1, steps);
+      break_bodies(world, recorder, static_cast<double>(n + 1) * options_.dt_s, s);
+      // Every tenth of the run, and every 10 s of wall time when steps are slow (a shattering body).
+      const auto now = std::chrono::steady_clock::now();
+      if (progress && ((n + 1) % std::max<std::size_t>(1, steps / 10) == 0 || now - last_report > std::chrono::seconds(10))) {
+        progress(n + 1, steps);
+        last_report = now;
+      }
     }
     scene_.events = recorder.finish();
     for (const auto& [id, o] : objects_) {
@@ -139,6 +169,8 @@ class Simulation {
     s.steps = steps;
     s.impacts = recorder.impacts();
     s.sustained = recorder.sustained();
+    s.fracture = breakables_->stats();
+    if (!scene_.fractures.empty() && s.fracture_s < 0) s.fracture_s = scene_.fractures.front().t_s;
     s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (stats) *stats = s;
     return scene_;
@@ -147,7 +179,8 @@ class Simulation {
  private:
   // Adds a body whose mesh coordinates map to the world by `placement`, moving with v, w.
   void add_body(World& world, int id, const Solid& solid, const RigidTransform& placement, const Vec3& v, const Vec3& w,
-                double created_s, double gap_m) {
+                double created_s, double gap_m, const model::Material* material = nullptr) {
+    if (!material) material = &body_material_;
     BodySpec spec;
     spec.id = id;
     spec.mass_kg = solid.mass_kg;
@@ -167,7 +200,8 @@ class Simulation {
     o.mass_kg = solid.mass_kg;
     o.volume_m3 = solid.volume_m3;
     for (int i = 0; i < 3; ++i) o.inertia_kg_m2[i][i] = solid.moments_kg_m2[i];
-    o.material = body_material_.name;
+    o.material = material->name;
+    if (!scene_.materials.count(material->name)) scene_.materials[material->name] = scene_material(*material, false);
     o.created_s = created_s;
     o.base_frequency_hz = solid.base_frequency_hz;
     o.mesh = solid.body_mesh;
@@ -175,8 +209,130 @@ class Simulation {
     objects_[id] = o;
   }
 
-  Solid solid(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles, const std::string& what) const {
-    return solid_of(vertices, triangles, body_material_, c_.boolean("bodies.base_frequency"), what);
+  Solid solid(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles, const std::string& what,
+              const model::Material* material = nullptr) const {
+    return solid_of(vertices, triangles, material ? *material : body_material_, c_.boolean("bodies.base_frequency"), what);
+  }
+
+  bool has(const char* body) const {
+    const StringList& b = c_.strings("sim.bodies");
+    return std::find(b.begin(), b.end(), body) != b.end();
+  }
+
+  // A body that breaks by physics (003 section 3): its stress mesh in its body frame.
+  void add_breakable(World& world, const Solid& solid, const RigidTransform& placement, const Vec3& v, const Vec3& w,
+                     const std::string& what) {
+    const int id = next_id_++;
+    kernels::fracture::TetMesh mesh;
+    {
+      Stage stage("stress mesh");
+      try {
+        mesh = kernels::fracture::tetrahedralize(solid.body_mesh->vertices_m, solid.body_mesh->triangles, c_.real("fracture.edge_m"));
+      } catch (const std::invalid_argument& e) {
+        throw InputError(fmt::format("{}: cannot be meshed for its stress: {}", what, e.what()));
+      }
+    }
+    add_body(world, id, solid, placement, v, w, 0, 0);
+    breakables_->insert(id, std::move(mesh), body_material_);
+  }
+
+  // 003 section 3 at every step: each breakable body in contact gets its quasistatic stress; one
+  // that breaks is replaced by its pieces, which carry the fracture impulses' velocities, and the
+  // impulses become the scene's fracture events.
+  void break_bodies(World& world, ImpactRecorder& recorder, double t_s, SimStats& s) {
+    std::set<int> touched;
+    for (const ContactSample& c : world.contacts()) {
+      if (breakables_->breakable(c.a)) touched.insert(c.a);
+      if (c.b && breakables_->breakable(c.b)) touched.insert(c.b);
+    }
+    for (int id : touched) {
+      if (!world.has_body(id)) continue;
+      const BodyState state = world.state(id);
+      std::optional<Fracture> f;
+      {
+        Stage stage("stress and fracture");
+        f = breakables_->check(id, world.contacts(), state, options_.dt_s, t_s, kinetic_energy(id, world.start_state(id)) - kinetic_energy(id, state));
+      }
+      if (!f) continue;
+      Stage stage("pieces");
+      world.remove_body(id);
+      breakables_->remove(id);
+      objects_.at(id).destroyed_s = t_s;
+      const RigidTransform placement{state.pose.orientation_wxyz, state.pose.position_m};
+      std::vector<int> ids;
+      for (std::size_t d = 0; d < f->pieces.size(); ++d) {
+        NewPiece& p = f->pieces[d];
+        Solid piece = solid_of(p.surface_vertices_m, p.surface_triangles, body_material_, false, fmt::format("piece {} of body {}", d, id));
+        if (c_.boolean("bodies.base_frequency")) {
+          // Of the piece's convex hull: its own surface is too fine for a quick solve.
+          Stage hull_stage("base frequency (FEM of the hull)");
+          const io::TriangleMesh hull = convex_hull(p.surface_vertices_m);
+          piece.base_frequency_hz = kernels::fem::lowest_free_mode(hull.vertices_m, hull.triangles, body_material_.youngs_pa,
+                                                                   body_material_.poisson, body_material_.rho_kg_m3).frequency_hz;
+        }
+        const int pid = next_id_++;
+        add_body(world, pid, piece, placement, p.velocity_m_s, p.angular_velocity_rad_s, t_s, 0);
+        // The piece's stress mesh in its own body frame.
+        const RigidTransform to_body = piece.principal.inverse();
+        for (Vec3& x : p.mesh.nodes_m) x = to_body.apply(x);
+        breakables_->insert(pid, std::move(p.mesh), body_material_);
+        for (int other : ids) world.ignore_until_apart(pid, other);
+        ids.push_back(pid);
+      }
+      for (const NewImpulse& i : f->impulses) {
+        io::SceneEvent e;
+        e.t_s = t_s;
+        e.a = ids[i.piece];
+        e.fracture = true;
+        e.contact_time_s = f->record.tau_s;
+        e.point_m = i.point_m;
+        e.impulse_n_s = i.impulse_n_s;
+        e.pose_a = world.state(e.a).pose;
+        recorder.add_event(e);
+        ++s.fracture_events;
+      }
+      f->record.pieces = ids;
+      scene_.fractures.push_back(f->record);
+      if (on_fracture_) on_fracture_(f->record);
+    }
+  }
+
+  double kinetic_energy(int id, const BodyState& b) const {
+    const io::SceneObject& o = objects_.at(id);
+    const Vec3 w = rotate_inverse(b.pose.orientation_wxyz, b.angular_velocity_rad_s);  // principal frame
+    double e = o.mass_kg * dot(b.velocity_m_s, b.velocity_m_s);
+    for (int i = 0; i < 3; ++i) e += o.inertia_kg_m2[i][i] * w[i] * w[i];
+    return e / 2;
+  }
+
+  // A box of slab.size_m centred on its own origin, turned by slab.rotation_deg about x, then y.
+  void add_slab(World& world) {
+    const Vec3 size = vector3("slab.size_m");
+    if (!(size[0] > 0 && size[1] > 0 && size[2] > 0))
+      throw InputError(fmt::format("slab.size_m: [{}, {}, {}]: every size must be > 0", size[0], size[1], size[2]));
+    const Piece box = voronoi_pieces(scale(size, -0.5), scale(size, 0.5), {}, {{0, 0, 0}}).front();
+    const Vec3 turn = vector3("slab.rotation_deg");
+    const double d = std::numbers::pi / 180;
+    const Quaternion qx{std::cos(turn[0] * d / 2), std::sin(turn[0] * d / 2), 0, 0};
+    const Quaternion qy{std::cos(turn[1] * d / 2), 0, std::sin(turn[1] * d / 2), 0};
+    const Quaternion qz{std::cos(turn[2] * d / 2), 0, 0, std::sin(turn[2] * d / 2)};
+    const RigidTransform placement{multiply(qz, multiply(qy, qx)), vector3("slab.position_m")};
+    add_breakable(world, solid(box.vertices_m, box.triangles, "slab"), placement, vector3("slab.velocity_m_s"), {}, "slab");
+  }
+
+  // A ball that does not break (the windows' projectile), of its own material.
+  void add_ball(World& world) {
+    ball_material_ = io::find_material(io::builtin_materials(), c_.string("ball.material"), "ball.material");
+    // A polyhedron of 64 faces tangent to the sphere at Fibonacci directions: voro++ cuts it.
+    const double r = c_.real("ball.radius_m");
+    std::vector<HalfSpace> faces;
+    for (int k = 0; k < 64; ++k) {
+      const double z = 1 - (2 * k + 1) / 64.0, a = k * std::numbers::pi * (3 - std::sqrt(5.0));
+      faces.push_back({{std::sqrt(1 - z * z) * std::cos(a), std::sqrt(1 - z * z) * std::sin(a), z}, r});
+    }
+    const Piece sphere = voronoi_pieces({-2 * r, -2 * r, -2 * r}, {2 * r, 2 * r, 2 * r}, faces, {{0, 0, 0}}).front();
+    add_body(world, next_id_++, solid_of(sphere.vertices_m, sphere.triangles, ball_material_, c_.boolean("bodies.base_frequency"), "ball"),
+             {{1, 0, 0, 0}, vector3("ball.position_m")}, vector3("ball.velocity_m_s"), {}, 0, 0, &ball_material_);
   }
 
   void add_meshes(World& world) {
@@ -200,7 +356,6 @@ class Simulation {
   // centred on the origin of its own coordinates with its faces normal to z.
   void add_plate(World& world) {
     const auto pieces = static_cast<std::size_t>(c_.integer("plate.pieces"));
-    if (!pieces) return;
     const double r = c_.real("plate.radius_m"), t = c_.real("plate.thickness_m");
     const auto sides = static_cast<int>(c_.integer("plate.sides"));
     const double apothem = r * std::cos(std::numbers::pi / sides);
@@ -218,16 +373,19 @@ class Simulation {
       const Vec3 p{(2 * u() - 1) * apothem, (2 * u() - 1) * apothem, 0};
       if (p[0] * p[0] + p[1] * p[1] < 0.95 * 0.95 * apothem * apothem) seeds.push_back(p);
     }
-    Piece whole;
+    const Piece whole = voronoi_pieces(lo, hi, planes, {{0, 0, 0}}).front();
+    const double tilt = c_.real("plate.tilt_deg") * std::numbers::pi / 180;
+    const RigidTransform placement{{std::cos(tilt / 2), std::sin(tilt / 2), 0, 0}, vector3("plate.position_m")};
+    const Solid plate = solid(whole.vertices_m, whole.triangles, "plate");
+    if (!pieces) {  // it breaks by physics
+      add_breakable(world, plate, placement, vector3("plate.velocity_m_s"), {}, "plate");
+      return;
+    }
     {
       Stage stage("voronoi");
       plate_pieces_ = voronoi_pieces(lo, hi, planes, seeds);
-      whole = voronoi_pieces(lo, hi, planes, {{0, 0, 0}}).front();
     }
-    const double tilt = c_.real("plate.tilt_deg") * std::numbers::pi / 180;
-    const RigidTransform placement{{std::cos(tilt / 2), std::sin(tilt / 2), 0, 0}, vector3("plate.position_m")};
     plate_id_ = next_id_++;
-    const Solid plate = solid(whole.vertices_m, whole.triangles, "plate");
     plate_principal_ = plate.principal;
     add_body(world, plate_id_, plate, placement, vector3("plate.velocity_m_s"), {}, 0, 0);
   }
@@ -319,7 +477,8 @@ class Simulation {
   const io::Config& c_;
   std::string config_path_;
   WorldOptions options_;
-  model::Material body_material_, ground_material_;
+  model::Material body_material_, ground_material_, ball_material_;
+  std::unique_ptr<Breakables> breakables_;
   io::Scene scene_;
   std::map<int, io::SceneObject> objects_;  // every body the run created, by id
   int next_id_ = 1, plate_id_ = 0;
@@ -339,7 +498,9 @@ const io::Schema& sim_schema() {
           {"sim.duration_s", 1.5, "simulated time, and the scene's duration [s]", Range{0, 600, true}},
           {"sim.gravity_m_s2", 9.81, "gravity, along -z [m/s^2]", Range{0, 1000}},
           {"sim.solver_iterations", std::int64_t{50}, "Bullet's sequential-impulse iterations per step", Range{1, 10000}},
-          {"sim.seed", std::int64_t{1}, "seed of the Voronoi sites (plate and pile)", Range{0, 9.0e15}},
+          {"sim.seed", std::int64_t{1}, "seed of the Voronoi sites (plate and pile) and of the fracture patterns", Range{0, 9.0e15}},
+          {"sim.bodies", io::StringList{"plate"}, "the built-in bodies in the scene: any of \"plate\", \"slab\", \"ball\", "
+                                                  "\"pile\" (besides meshes.files)"},
           {"record.impact_window_s", 2e-3, "longest impact: a contact point's first event sums at most this much of its "
            "impulse (sim/impacts.hpp, docs/synth.md) [s]", Range{0, 10, true}},
           {"record.sustain_window_s", 0.1, "a point still pushing after its impact continues as sustained-contact events "
@@ -361,7 +522,9 @@ const io::Schema& sim_schema() {
           {"meshes.files", io::StringList{}, "bodies from closed triangle meshes (OBJ, relative to the config; convex hulls collide)"},
           {"meshes.positions_m", io::RealList{}, "where each mesh's coordinate origin starts [m]", {}, {}, 3},
           {"meshes.velocities_m_s", io::RealList{}, "each mesh's starting velocity [m/s] (empty: at rest)", {}, {}, 3},
-          {"plate.pieces", std::int64_t{40}, "a plate pre-fractured into this many Voronoi pieces (0: no plate)", Range{0, 100000}},
+          {"plate.pieces", std::int64_t{0}, "0: the plate breaks by physics (003 section 3, fracture.*); N > 0: it is pre-fractured "
+                                            "into N Voronoi pieces and breaks at its first contact faster than plate.break_speed_m_s "
+                                            "(the fast option)", Range{0, 100000}},
           {"plate.radius_m", 0.13, "the plate's outer radius (polygon circumradius) [m]", Range{0, 100, true}},
           {"plate.thickness_m", 0.006, "its thickness [m]", Range{0, 100, true}},
           {"plate.sides", std::int64_t{32}, "sides of its polygonal outline", Range{3, 1000}},
@@ -375,6 +538,30 @@ const io::Schema& sim_schema() {
           {"plate.fracture_time_s", 2e-4, "duration of each fracture impulse (the scene's contact_time_s) [s]", Range{0, 1, true}},
           {"plate.gap_m", 2e-4, "pieces collide as if this much smaller on each side, so neighbours start apart [m]",
            Range{0, 0.01}},
+          {"slab.size_m", io::RealList{0.2, 0.2, 0.015}, "a breakable box (003's glass slab, windows, tile) of this size along "
+                                                        "its x, y, z [m]"},
+          {"slab.position_m", io::RealList{0, 0, 1.0}, "its centre at the start [m]"},
+          {"slab.rotation_deg", io::RealList{0, 0, 0}, "its turn at the start about x, then y, then z [deg]"},
+          {"slab.velocity_m_s", io::RealList{0, 0, 0}, "its starting velocity [m/s]"},
+          {"ball.material", std::string("steel"), "material of the ball (it does not break): a table of configs/materials.toml"},
+          {"ball.radius_m", 0.02, "its radius [m] (a 64-face polyhedron around the sphere)", Range{0, 10, true}},
+          {"ball.position_m", io::RealList{0, -0.3, 0.5}, "its centre at the start [m]"},
+          {"ball.velocity_m_s", io::RealList{0, 10, 0}, "its starting velocity [m/s]"},
+          {"fracture.edge_m", 5e-3, "edge length of the linear tetrahedra of a breakable body's stress mesh [m]", Range{0, 1, true}},
+          {"fracture.contact_radius_m", 3e-3, "a contact force spreads over the surface nodes this close to its point [m]",
+           Range{0, 1}},
+          {"fracture.eta", 0.8, "share of the strain energy the fracture surfaces may consume: G_c A_F <= eta E_S (003 section 3.2)",
+           Range{0, 1, true}},
+          {"fracture.alpha", 0.15, "region weights (strain energy density at the seed)^alpha (003 section 3.2)", Range{0, 10}},
+          {"fracture.impulses", true, "apply 003 section 3.3's fracture impulses (E_S - E_F as the pieces' kinetic energy, "
+                                      "the scene's fracture events); false: pieces start with the body's motion (Fig. 5's inset)"},
+          {"fracture.toughness_j_m2", 0.0, "G_c [J/m^2] instead of the material's fracture_energy_j_m2 (0: the material's)",
+           Range{0, 1e9}},
+          {"fracture.strength_pa", 0.0, "tensile strength [Pa] instead of the material's tensile_strength_pa (0: the material's)",
+           Range{0, 1e12}},
+          {"fracture.min_volume_m3", 2e-6, "pieces smaller than this no longer break [m^3]", Range{0, 1e9}},
+          {"fracture.min_piece_m3", 2e-7, "a fracture pattern stops adding seeds before a piece would be smaller than this "
+                                          "[m^3]: the stress mesh must resolve its pieces", Range{0, 1e9}},
           {"pile.pieces", std::int64_t{0}, "a block of loose Voronoi rocks of this many pieces (0: none)", Range{0, 100000}},
           {"pile.size_m", io::RealList{0.4, 0.3, 0.25}, "the block's size along x, y, z [m]"},
           {"pile.position_m", io::RealList{0, 0, 0.35}, "the block's centre at the start [m]"},
@@ -387,8 +574,10 @@ const io::Schema& sim_schema() {
   return schema;
 }
 
-io::Scene simulate(const io::Config& config, const std::string& config_path, SimStats* stats, const Progress& progress) {
+io::Scene simulate(const io::Config& config, const std::string& config_path, SimStats* stats, const Progress& progress,
+                   const FractureReport& on_fracture) {
   Simulation sim(config, config_path);
+  sim.on_fracture_ = on_fracture;
   return sim.run(stats, progress);
 }
 

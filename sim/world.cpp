@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/CollisionShapes/btShapeHull.h>
 #include <LinearMath/btConvexHullComputer.h>
 #include <algorithm>
 #include <stdexcept>
@@ -25,6 +26,29 @@ btTransform transform_of(const io::Pose& p) {
 }
 
 }  // namespace
+
+io::TriangleMesh convex_hull(const std::vector<Vec3>& points, int max_vertices) {
+  btConvexHullComputer hull;
+  hull.compute(points.front().data(), static_cast<int>(sizeof(Vec3)), static_cast<int>(points.size()), 0, 0);
+  if (hull.vertices.size() > max_vertices) {
+    btConvexHullShape exact(&hull.vertices[0][0], hull.vertices.size(), static_cast<int>(sizeof(btVector3)));
+    exact.setMargin(0);
+    btShapeHull reduced(&exact);
+    reduced.buildHull(0);
+    std::vector<Vec3> kept;
+    for (int i = 0; i < reduced.numVertices(); ++i) kept.push_back(vec(reduced.getVertexPointer()[i]));
+    hull.compute(kept.front().data(), static_cast<int>(sizeof(Vec3)), static_cast<int>(kept.size()), 0, 0);
+  }
+  io::TriangleMesh out;
+  for (int i = 0; i < hull.vertices.size(); ++i) out.vertices_m.push_back(vec(hull.vertices[i]));
+  for (int f = 0; f < hull.faces.size(); ++f) {  // each face a convex polygon, counter-clockwise: a fan
+    const btConvexHullComputer::Edge* first = &hull.edges[hull.faces[f]];
+    const int apex = first->getSourceVertex();
+    for (const btConvexHullComputer::Edge* e = first->getNextEdgeOfFace(); e->getTargetVertex() != apex; e = e->getNextEdgeOfFace())
+      out.triangles.push_back({apex, e->getSourceVertex(), e->getTargetVertex()});
+  }
+  return out;
+}
 
 struct World::Impl {
   btDefaultCollisionConfiguration configuration;
@@ -85,6 +109,16 @@ void World::add_body(const BodySpec& s) {
                                      s.margin_m + s.gap_m, 0.25);
   if (hull.vertices.size() < 4) throw std::invalid_argument(fmt::format("World::add_body: body {}'s hull is flat", s.id));
   b->shape = std::make_unique<btConvexHullShape>(&hull.vertices[0][0], hull.vertices.size(), static_cast<int>(sizeof(btVector3)));
+  // Fracture pieces have fine surfaces, and GJK's support query is linear in the hull's vertices:
+  // a hull of more than kHullVertices is replaced by Bullet's simplified hull (its support points
+  // in 42 directions), a fraction of a millimetre inside the exact one on centimetre debris.
+  constexpr int kHullVertices = 64;
+  if (b->shape->getNumPoints() > kHullVertices) {
+    b->shape->setMargin(0);
+    btShapeHull reduced(b->shape.get());
+    reduced.buildHull(0);
+    b->shape = std::make_unique<btConvexHullShape>(&reduced.getVertexPointer()[0][0], reduced.numVertices(), static_cast<int>(sizeof(btVector3)));
+  }
   b->shape->setMargin(std::max(0.0, shrunk - s.gap_m));
   b->motion = std::make_unique<btDefaultMotionState>(transform_of(s.initial.pose));
   btRigidBody::btRigidBodyConstructionInfo info(s.mass_kg, b->motion.get(), b->shape.get(), bt(s.principal_moments_kg_m2));
@@ -129,6 +163,12 @@ BodyState World::state(int id) const {
   if (it == bodies_.end()) throw std::invalid_argument(fmt::format("World::state: no body {}", id));
   const btRigidBody& r = *it->second->body;
   return {pose_of(r.getWorldTransform()), vec(r.getLinearVelocity()), vec(r.getAngularVelocity())};
+}
+
+BodyState World::start_state(int id) const {
+  auto it = bodies_.find(id);
+  if (it == bodies_.end()) throw std::invalid_argument(fmt::format("World::start_state: no body {}", id));
+  return {pose_of(it->second->start), vec(it->second->v_start), vec(it->second->w_start)};
 }
 
 void World::step() {

@@ -54,6 +54,11 @@ struct ContactSample {
   io::Pose pose_a, pose_b;              // at the step's start
 };
 
+// The convex hull of `points` as a closed outward triangle mesh, simplified (Bullet's support
+// points in 42 directions) when it has more than max_vertices vertices: the small solid whose
+// lowest mode stands in for a fracture piece's (docs/fracture.md "Pieces' base frequency").
+io::TriangleMesh convex_hull(const std::vector<Vec3>& points, int max_vertices = 64);
+
 class World {
  public:
   explicit World(const WorldOptions& options);
@@ -68,6 +73,7 @@ class World {
   void ignore_until_apart(int a, int b);
   bool has_body(int id) const { return bodies_.count(id) != 0; }
   BodyState state(int id) const;
+  BodyState start_state(int id) const;  // at the last step's start
   std::size_t bodies() const { return bodies_.size(); }
 
   // One step of dt_s; afterwards contacts() holds the step's points with a non-zero impulse, in

@@ -51,7 +51,7 @@ PieceInertia tet_mesh_inertia(const TetMesh& mesh, double rho_kg_m3) {
   return p;
 }
 
-FractureImpulses fracture_impulses(const std::vector<FractureFace>& faces, const std::vector<Mat3>& stress_pa,
+FractureImpulses fracture_impulses(const std::vector<FractureTriangle>& faces, const std::vector<Mat3>& stress_pa,
                                    const std::vector<PieceInertia>& pieces, const std::vector<Vec3>& v_m_s,
                                    const std::vector<Vec3>& w_rad_s, double released_j) {
   const std::size_t n = pieces.size();
@@ -62,7 +62,7 @@ FractureImpulses fracture_impulses(const std::vector<FractureFace>& faces, const
     double area = 0;
   };
   std::map<std::pair<int, int>, Side> sides;
-  for (const FractureFace& f : faces) {
+  for (const FractureTriangle& f : faces) {
     if (f.piece < 0 || static_cast<std::size_t>(f.piece) >= n || f.tet < 0 || static_cast<std::size_t>(f.tet) >= stress_pa.size())
       throw std::invalid_argument("fracture_impulses: a face names a piece or tetrahedron that does not exist");
     const Eigen::Vector3d a = eig(f.points_m[0]), b = eig(f.points_m[1]), c = eig(f.points_m[2]);

@@ -4,16 +4,9 @@
 // renders. Everything in the broken body's own coordinates.
 #include <vector>
 
-#include "kernels/fracture/tet_mesh.hpp"
+#include "kernels/fracture/pattern.hpp"
 
 namespace clatter::kernels::fracture {
-
-// A fracture-surface triangle as pattern.hpp gives it: counter-clockwise seen from outside `piece`,
-// in the input mesh's tetrahedron `tet`.
-struct FractureFace {
-  std::array<Vec3, 3> points_m;
-  int piece = 0, other = 0, tet = 0;
-};
 
 struct PieceInertia {
   double mass_kg = 0;
@@ -43,7 +36,7 @@ struct FractureImpulses {
 // tau from  Delta E_K = released_j  with the pieces' pre-fracture velocities (v, w; per piece,
 // body coordinates). stress_pa: per tetrahedron of the broken body's mesh. released_j <= 0 or no
 // stress: tau = 0 and no change.
-FractureImpulses fracture_impulses(const std::vector<FractureFace>& faces, const std::vector<Mat3>& stress_pa,
+FractureImpulses fracture_impulses(const std::vector<FractureTriangle>& faces, const std::vector<Mat3>& stress_pa,
                                    const std::vector<PieceInertia>& pieces, const std::vector<Vec3>& v_m_s,
                                    const std::vector<Vec3>& w_rad_s, double released_j);
 

@@ -414,6 +414,11 @@ FracturePattern fracture_pattern(const TetMesh& mesh, const std::vector<double>&
           area_m2 += quad_area_m2[static_cast<std::size_t>(t) * 6 + e];
     }
     if (settings.fracture_energy_j_m2 * area_m2 > budget_j) break;
+    if (settings.min_piece_volume_m3 > 0) {  // by nodal volumes: the split moves little volume
+      std::vector<double> region_m3(static_cast<std::size_t>(s), 0);
+      for (int n = 0; n < nodes; ++n) region_m3[region[n]] += volume_m3[n];
+      if (*std::min_element(region_m3.begin(), region_m3.end()) < settings.min_piece_volume_m3) break;
+    }
     accepted.swap(region);
     accepted_seeds = s;
   }

@@ -18,6 +18,9 @@ struct PatternSettings {
   double alpha = 0.15;              // region weight k_i = (energy density at seed i)^alpha, >= 0
   std::uint64_t seed = 1;           // of the seed sampling
   int max_pieces = 2000;            // stop adding seeds here too
+  // Stop adding seeds before a piece would be smaller than this (0: no bound): the stress mesh
+  // must resolve the pieces it makes (a piece of a few tetrahedra has no meaningful stress).
+  double min_piece_volume_m3 = 0;
   // Where non-empty: the seed nodes, in insertion order, instead of the sampled ones (distinct
   // node indices; a scene that wants a crack at a known place, and the tests).
   std::vector<int> seed_nodes;

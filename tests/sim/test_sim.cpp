@@ -43,7 +43,7 @@ io::Config one_body(const std::string& obj, const Vec3& position, const Vec3& ve
   c.set(fmt::format("sim.gravity_m_s2={}", kG));
   c.set("listeners.positions_m=[[3,3,3]]");
   c.set("bodies.base_frequency=false");  // the FEM is not what these tests check
-  c.set("plate.pieces=0");
+  c.set("sim.bodies=[]");
   return c;
 }
 

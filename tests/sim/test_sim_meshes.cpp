@@ -120,7 +120,7 @@ TEST(SimMeshes, MeshBodyPosePlacesItsOBJ) {
   c.set(fmt::format("meshes.positions_m=[[{},{},{}]]", at[0], at[1], at[2]));
   c.set("sim.duration_s=0.1");
   c.set("bodies.base_frequency=false");
-  c.set("plate.pieces=0");
+  c.set("sim.bodies=[]");
   SimStats stats;
   const io::Scene simulated = simulate(c, "", &stats);
   io::write_scene(simulated, (dir / "l.json").string());
