@@ -56,6 +56,7 @@ struct Fracture {
 
 struct FractureStats {
   std::size_t factorizations = 0, stress_solves = 0, fractures = 0, refused = 0, energy_bounded = 0;
+  std::size_t skipped = 0;  // contact steps that absorbed too little energy to break anything: no solve
   double factorize_s = 0, solve_s = 0, pattern_s = 0;
   std::size_t largest_dofs = 0;
 };

@@ -63,7 +63,7 @@ void simulate_and_write(const Options& o, const io::Config& config) {
   std::printf("clatter-sim: wrote %s and its %zu objects' meshes in %s/ (%s), %zu events: %zu impacts, %zu sustained contacts, %zu fracture impulses "
               "(from %zu contact-point steps); %zu steps in %.2f s (%.3g steps/s)\n",
               o.out.c_str(), scene.objects.size(), mesh_folder.c_str(),
-              stats.fracture_s >= 0 ? fmt::format("the plate broke at {:.4f} s", stats.fracture_s).c_str() : "no fracture",
+              stats.fracture_s >= 0 ? fmt::format("first fracture at {:.4f} s", stats.fracture_s).c_str() : "no fracture",
               scene.events.size(), stats.impacts, stats.sustained, stats.fracture_events, stats.contact_samples, stats.steps,
               stats.wall_s, static_cast<double>(stats.steps) / stats.wall_s);
   const sim::FractureStats& f = stats.fracture;
@@ -71,9 +71,9 @@ void simulate_and_write(const Options& o, const io::Config& config) {
     std::size_t pieces = 0;
     for (const auto& r : scene.fractures) pieces += r.pieces.size();
     std::printf("clatter-sim: fracture (003 section 3): %zu fractures made %zu pieces (%zu more refused: E_S could not pay for two "
-                "pieces), %zu steps' stress bounded by the energy the contacts took; %zu stress solves in %.3g s (%.3g ms each), "
+                "pieces), %zu steps' stress bounded by the energy the contacts took, %zu contact steps too weak to solve; %zu stress solves in %.3g s (%.3g ms each), "
                 "%zu factorizations in %.3g s (largest %zu dofs), patterns %.3g s\n",
-                f.fractures, pieces, f.refused, f.energy_bounded, f.stress_solves, f.solve_s, f.stress_solves ? 1e3 * f.solve_s / static_cast<double>(f.stress_solves) : 0.0,
+                f.fractures, pieces, f.refused, f.energy_bounded, f.skipped, f.stress_solves, f.solve_s, f.stress_solves ? 1e3 * f.solve_s / static_cast<double>(f.stress_solves) : 0.0,
                 f.factorizations, f.factorize_s, f.largest_dofs, f.pattern_s);
   }
 }

@@ -10,9 +10,9 @@ namespace {
 
 // Two unit-density cubes of side 1 m, [-1, 0] x [0, 1]^2 (piece 0) and [0, 1] x [0, 1]^2
 // (piece 1), meeting on x = 0: the interface as two triangles per side, each outward from its piece.
-std::vector<FractureFace> cube_interface(int tet) {
+std::vector<FractureTriangle> cube_interface(int tet) {
   const Vec3 p00{0, 0, 0}, p10{0, 1, 0}, p11{0, 1, 1}, p01{0, 0, 1};
-  std::vector<FractureFace> f;
+  std::vector<FractureTriangle> f;
   // Outward from piece 0 is +x: counter-clockwise seen from +x.
   f.push_back({{p00, p10, p11}, 0, 1, tet});
   f.push_back({{p00, p11, p01}, 0, 1, tet});
