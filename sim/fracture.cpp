@@ -164,8 +164,9 @@ std::optional<Fracture> Breakables::check(int id, const std::vector<ContactSampl
     n.angular_velocity_rad_s = rotate(q, add(w[d], impulses.dw_rad_s[d]));
     f.pieces.push_back(std::move(n));
   }
-  for (const kf::InterfaceImpulse& i : impulses.interfaces)
-    f.impulses.push_back({i.piece, add(state.pose.position_m, rotate(q, i.point_m)), rotate(q, i.impulse_n_s)});
+  if (impulses.tau_s > 0)  // else nothing pushes the pieces: no fracture events
+    for (const kf::InterfaceImpulse& i : impulses.interfaces)
+      f.impulses.push_back({i.piece, add(state.pose.position_m, rotate(q, i.point_m)), rotate(q, i.impulse_n_s)});
   io::SceneFracture& r = f.record;
   r.t_s = t_s;
   r.body = id;

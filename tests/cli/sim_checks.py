@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """clatter-sim end to end (docs/synth.md "Scenes from a rigid-body simulator"):
-- determinism: the plate scene (scenes/plate.toml, shortened to 0.6 s: it breaks at 0.31 s) and a
+- determinism: the pre-fractured plate (scenes/plate.toml with plate.pieces=40, shortened to 0.6 s: it breaks at 0.31 s) and a
   shortened rock slide (scenes/rockslide.toml, 0.1 s), each run twice, give identical bytes, the
   scene (but for its mesh folder's name) and every mesh file;
 - the scene is what the format promises, checked here on the JSON: the plate object destroyed at
@@ -11,7 +11,8 @@
   object outside a bank's coverage is listed by id with its reason (docs/synth.md "Coverage");
 - bad input, each exit 2 with one line naming the key and value, and a scene file already at the
   output path left untouched: an unknown material, one position for two meshes, a 2-vector, a
-  zero time step, nothing to simulate, a file where the scene's mesh folder goes.
+  zero time step, nothing to simulate, an unknown built-in body, a breakable body of a material without
+  fracture data, a file where the scene's mesh folder goes.
 Usage: sim_checks.py CLATTER_SIM CLATTER_SYNTH SOURCE_DIR PAN_BANK MODAL_BANK GROUND_BANK SCRATCH"""
 import filecmp, json, math, os, re, sys
 
@@ -25,7 +26,8 @@ start(scratch)
 plate_cfg = os.path.join(src, "scenes", "plate.toml")
 rocks_cfg = os.path.join(src, "scenes", "rockslide.toml")
 # The test ground bank holds steel and soil: the plate falls on steel here.
-plate_args = [sim, "-q", "-c", plate_cfg, "--set", "sim.duration_s=0.6", "--set", "ground.material=\"steel\""]
+# The pre-fractured plate (plate.pieces > 0, the fast option); fracture by stress: fracture_checks.py.
+plate_args = [sim, "-q", "-c", plate_cfg, "--set", "sim.duration_s=0.6", "--set", "ground.material=\"steel\"", "--set", "plate.pieces=40"]
 for name in ("a", "b"):
     r = run(*plate_args, "-o", f"plate_{name}.json")
     check(r.returncode == 0, f"plate run {name} exits 0 ({r.returncode}: {r.stderr.strip()[-300:]})")
@@ -60,7 +62,7 @@ check(all(os.path.isfile(o["mesh"]) and o["mesh"].startswith("plate_a.meshes/") 
 check(len(os.listdir("plate_a.meshes")) == len(scene["objects"]), "one mesh file per object, no other")
 fractures = [e for e in scene["events"] if e["b"] == "fracture"]
 check(len(fractures) == len(pieces) and all(e["t_s"] == t_break for e in fractures), "one fracture event per piece, at the break")
-kick = 0.5  # plate.kick_m_s of scenes/plate.toml
+kick = 0.5  # plate.kick_m_s's default
 check(all(abs(math.hypot(*e["impulse_n_s"]) / (objects[e["a"]]["mass_kg"] * kick) - 1) < 1e-9 for e in fractures),
       "each fracture impulse is the piece's mass times the kick speed")
 times = [e["t_s"] for e in scene["events"]]
@@ -91,7 +93,9 @@ bad = [(["--set", "bodies.material=\"unobtainium\""], "unobtainium"),
        (["--set", "meshes.files=[\"a.obj\", \"b.obj\"]", "--set", "meshes.positions_m=[[0, 0, 1]]"], "meshes.positions_m"),
        (["--set", "plate.position_m=[0, 1]"], "plate.position_m"),
        (["--set", "sim.dt_s=0"], "sim.dt_s"),
-       (["--set", "plate.pieces=0"], "nothing to simulate")]
+       (["--set", "sim.bodies=[]"], "nothing to simulate"),
+       (["--set", "sim.bodies=[\"cube\"]"], "sim.bodies"),
+       (["--set", "bodies.material=\"steel\""], "tensile_strength_pa")]
 for extra, word in bad:
     r = run(sim, "-c", plate_cfg, *extra, "-o", "kept.json")
     lines = r.stderr.strip().splitlines()
