@@ -4,9 +4,10 @@
 #                             on 2 ranks (out/demo/), their summaries, and the demo scene rendered with
 #                             PAN, modal and ground sound
 #                             (out/demo/debris.wav, its stems and spectrogram); then the two simulated
-#                             scenes of scenes/*.toml (clatter-sim: a rock slide and a shattering
-#                             plate), the intact plate's own modal model (clatter-bank object) and
-#                             the plate rendered with every source (out/demo/plate.wav)
+#                             scenes of scenes/*.toml (clatter-sim: a rock slide and the plate
+#                             pre-fractured), the intact plate's own modal model (clatter-bank object),
+#                             the plate rendered with every source (out/demo/plate.wav), and 003's
+#                             ceramic tile broken by its stress (docs/fracture.md; out/demo/tile.wav)
 #   make test                 every test (ctest) but those labelled extended, in build/$(PRESET), then `make fuzz`
 #   make test-extended        the extended tests (minutes each: the ground sound's elevation and eta sweep)
 #   make fuzz                 the libFuzzer harnesses of the readers, 30 s each (preset fuzz, clang-14)
@@ -48,12 +49,15 @@ demo: build
 	$(BUILD)/bin/clatter-synth -i scenes/demo.json -b out/demo/bank.h5 -m out/demo/modal.h5 -g out/demo/ground.h5 -o out/demo/debris.wav --stems
 	$(PYTHON) analysis/spectrogram.py out/demo/debris.wav
 	$(BUILD)/bin/clatter-sim -c scenes/rockslide.toml -o out/demo/rockslide.json
-	$(BUILD)/bin/clatter-sim -c scenes/plate.toml -o out/demo/plate.json
+	$(BUILD)/bin/clatter-sim -c scenes/plate.toml --set plate.pieces=40 -o out/demo/plate.json
 	mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-plate.toml -o out/demo/modal-plate.h5 --log-view
 	mpiexec -n 2 $(BUILD)/bin/clatter-bank object -c configs/object-plate.toml -o out/demo/objects-plate.h5 --log-view
 	$(BUILD)/bin/clatter-bank info out/demo/objects-plate.h5
 	$(BUILD)/bin/clatter-synth -i out/demo/plate.json -b out/demo/bank.h5 -m out/demo/modal-plate.h5 -O out/demo/objects-plate.h5 -g out/demo/ground.h5 -o out/demo/plate.wav --stems
 	$(PYTHON) analysis/spectrogram.py out/demo/plate.wav
+	$(BUILD)/bin/clatter-sim -c scenes/tile.toml -o out/demo/tile.json
+	$(BUILD)/bin/clatter-synth -i out/demo/tile.json -b out/demo/bank.h5 -m out/demo/modal-plate.h5 -g out/demo/ground.h5 -o out/demo/tile.wav --stems
+	$(PYTHON) analysis/spectrogram.py out/demo/tile.wav
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300 -LE extended
