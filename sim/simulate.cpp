@@ -179,7 +179,7 @@ class Simulation {
  private:
   // Adds a body whose mesh coordinates map to the world by `placement`, moving with v, w.
   void add_body(World& world, int id, const Solid& solid, const RigidTransform& placement, const Vec3& v, const Vec3& w,
-                double created_s, double gap_m, const model::Material* material = nullptr) {
+                double created_s, double gap_m, const model::Material* material = nullptr, int max_hull_vertices = 0) {
     if (!material) material = &body_material_;
     BodySpec spec;
     spec.id = id;
@@ -190,6 +190,7 @@ class Simulation {
     spec.gap_m = gap_m;
     spec.friction = c_.real("bodies.friction");
     spec.restitution = c_.real("bodies.restitution");
+    spec.max_hull_vertices = max_hull_vertices;
     const RigidTransform body = placement.compose(solid.principal);
     spec.initial.pose = {body.translation_m, body.rotation};
     spec.initial.velocity_m_s = v;
@@ -279,7 +280,7 @@ class Simulation {
           }
         }
         const int pid = next_id_++;
-        add_body(world, pid, piece, placement, p.velocity_m_s, p.angular_velocity_rad_s, t_s, 0);
+        add_body(world, pid, piece, placement, p.velocity_m_s, p.angular_velocity_rad_s, t_s, 0, nullptr, 64);
         // The piece's stress mesh in its own body frame.
         const RigidTransform to_body = piece.principal.inverse();
         for (Vec3& x : p.mesh.nodes_m) x = to_body.apply(x);

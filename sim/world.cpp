@@ -109,11 +109,8 @@ void World::add_body(const BodySpec& s) {
                                      s.margin_m + s.gap_m, 0.25);
   if (hull.vertices.size() < 4) throw std::invalid_argument(fmt::format("World::add_body: body {}'s hull is flat", s.id));
   b->shape = std::make_unique<btConvexHullShape>(&hull.vertices[0][0], hull.vertices.size(), static_cast<int>(sizeof(btVector3)));
-  // Fracture pieces have fine surfaces, and GJK's support query is linear in the hull's vertices:
-  // a hull of more than kHullVertices is replaced by Bullet's simplified hull (its support points
-  // in 42 directions), a fraction of a millimetre inside the exact one on centimetre debris.
-  constexpr int kHullVertices = 64;
-  if (b->shape->getNumPoints() > kHullVertices) {
+  // GJK's support query is linear in the hull's vertices (fracture pieces have fine surfaces).
+  if (s.max_hull_vertices > 0 && b->shape->getNumPoints() > s.max_hull_vertices) {
     b->shape->setMargin(0);
     btShapeHull reduced(b->shape.get());
     reduced.buildHull(0);

@@ -37,6 +37,9 @@ struct BodySpec {
   double gap_m = 0;                     // the rounded surface is the hull's, less gap_m (pre-fractured
                                         // pieces that touch are made not to overlap)
   double friction = 0.6, restitution = 0.3;
+  // > 0: a hull of more vertices is replaced by Bullet's simplified one (its support points in 42
+  // directions), slightly inside the exact hull; fracture pieces, whose fine surfaces make GJK slow.
+  int max_hull_vertices = 0;
   BodyState initial;
 };
 
