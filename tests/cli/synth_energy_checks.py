@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The modal source's energy rule end to end (docs/synth.md "Energy account"), on the plate scene of
-`make demo` (scenes/plate.toml, simulated here) rendered with modal sound only:
+`make demo` (scenes/plate.toml pre-fractured into 40 pieces, simulated here) rendered with modal sound only:
 - with the plate-shaped bank (configs/modal-plate.toml, the synth_plate_bank fixture) and with the
   near-sphere bank of make demo (configs/modal-demo.toml, glass, which serves ceramic's nu), the
   peaks at the listener are within a factor of 2 of each other: voicing the flat pieces by
@@ -22,7 +22,7 @@ from check_lib import check, finish, run, start  # noqa: E402
 sim, synth, source_dir, plate_bank, demo_bank, sphere_bank, scratch = sys.argv[1:8]
 start(scratch)
 
-r = run(sim, "-c", os.path.join(source_dir, "scenes", "plate.toml"), "-o", "plate.json")
+r = run(sim, "-c", os.path.join(source_dir, "scenes", "plate.toml"), "--set", "plate.pieces=40", "-o", "plate.json")
 check(r.returncode == 0, f"clatter-sim makes the plate scene (exit {r.returncode}) {r.stderr.strip()[-300:]}")
 
 
