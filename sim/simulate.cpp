@@ -267,7 +267,21 @@ class Simulation {
         if (c_.boolean("bodies.base_frequency")) {
           // Of the piece's convex hull: its own surface is too fine for a quick solve.
           Stage hull_stage("base frequency (FEM of the hull)");
-          const io::TriangleMesh hull = convex_hull(p.surface_vertices_m);
+          // The hull of the surface's vertices snapped to a grid of 1 % of the piece's size, at most 32
+          // vertices: TetGen 1.5 aborts (an assertion, not an error) on some hulls with near-duplicate
+          // vertices and sliver faces, which the fine fracture surfaces make.
+          Vec3 lo = p.surface_vertices_m.front(), hi = lo;
+          for (const Vec3& x : p.surface_vertices_m)
+            for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
+          const double cell = 0.01 * std::sqrt(dot(sub(hi, lo), sub(hi, lo)));
+          std::set<std::array<long long, 3>> seen;
+          std::vector<Vec3> snapped;
+          for (const Vec3& x : p.surface_vertices_m) {
+            const std::array<long long, 3> key{std::llround(x[0] / cell), std::llround(x[1] / cell), std::llround(x[2] / cell)};
+            if (seen.insert(key).second)
+              snapped.push_back({static_cast<double>(key[0]) * cell, static_cast<double>(key[1]) * cell, static_cast<double>(key[2]) * cell});
+          }
+          const io::TriangleMesh hull = convex_hull(snapped, 32);
           kernels::fem::LowestModeSettings quick;
           quick.edge_length_m = std::cbrt(piece.volume_m3);  // 10-node elements: a few through the piece suffice
           quick.tolerance = 1e-6;                             // the frequency to about 1e-6, far below the hull's error
