@@ -11,6 +11,7 @@
 #include "kernels/fracture/impulses.hpp"
 #include "kernels/fracture/pattern.hpp"
 #include "kernels/fracture/quasistatic.hpp"
+#include "kernels/mass_properties.hpp"
 
 namespace clatter::sim {
 namespace {
@@ -137,7 +138,11 @@ std::optional<Fracture> Breakables::check(int id, const std::vector<ContactSampl
   std::vector<kf::PieceInertia> inertia;
   std::vector<Vec3> v, w;
   for (const kf::Piece& p : pattern.pieces) {
-    inertia.push_back(kf::tet_mesh_inertia(p.mesh, b.material.rho_kg_m3));
+    const kernels::MeshMassProperties mp = kernels::mesh_mass_properties(p.mesh.nodes_m, p.surface);
+    kf::PieceInertia i{b.material.rho_kg_m3 * mp.volume_m3, mp.centroid_m, {}};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) i.inertia_kg_m2[r][c] = b.material.rho_kg_m3 * mp.inertia_per_density_m5[r][c];
+    inertia.push_back(i);
     v.push_back(add(v_body, cross(w_body, inertia.back().centre_m)));
     w.push_back(w_body);
   }

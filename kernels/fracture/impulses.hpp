@@ -40,7 +40,4 @@ FractureImpulses fracture_impulses(const std::vector<FractureTriangle>& faces, c
                                    const std::vector<PieceInertia>& pieces, const std::vector<Vec3>& v_m_s,
                                    const std::vector<Vec3>& w_rad_s, double released_j);
 
-// Mass, centre and inertia about the centre of a tetrahedral mesh of uniform density.
-PieceInertia tet_mesh_inertia(const TetMesh& mesh, double rho_kg_m3);
-
 }  // namespace clatter::kernels::fracture

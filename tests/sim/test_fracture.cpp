@@ -12,6 +12,7 @@
 #include "core/rotation.hpp"
 #include "io/materials.hpp"
 #include "kernels/fracture/impulses.hpp"
+#include "tests/reference/tet_inertia.hpp"
 #include "kernels/fracture/tet_mesh.hpp"
 #include "sim/fracture.hpp"
 #include "sim/voronoi.hpp"
@@ -73,7 +74,7 @@ struct Struck {
   }
   // The body's momenta before (a rigid body: its inertia from its tetrahedra, in the world).
   Momenta before() const {
-    const kf::PieceInertia b = kf::tet_mesh_inertia(mesh, glass.rho_kg_m3);
+    const kf::PieceInertia b = reference::tet_mesh_inertia(mesh, glass.rho_kg_m3);
     const Eigen::Matrix3d r = rotation(state.pose);
     const Eigen::Matrix3d inertia = r * e(b.inertia_kg_m2) * r.transpose();
     Momenta m;
@@ -91,7 +92,7 @@ Momenta after(const Fracture& f, const BodyState& body, double rho) {
   const Eigen::Matrix3d r = rotation(body.pose);
   Momenta m;
   for (const NewPiece& p : f.pieces) {
-    const kf::PieceInertia i = kf::tet_mesh_inertia(p.mesh, rho);
+    const kf::PieceInertia i = reference::tet_mesh_inertia(p.mesh, rho);
     const Eigen::Vector3d c = r * e(i.centre_m);  // from the body's centre, world axes
     const Eigen::Matrix3d inertia = r * e(i.inertia_kg_m2) * r.transpose();
     const Eigen::Vector3d v = e(p.velocity_m_s), w = e(p.angular_velocity_rad_s);

