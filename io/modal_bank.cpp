@@ -70,6 +70,7 @@ void write_solve_record(File& f, const std::string& g, const model::ModalSolveRe
   write_attribute<std::int64_t>(f, g, "found_in_interval", s.found_in_interval);
   write_attribute<std::int64_t>(f, g, "shifts", s.shifts);
   write_attribute<double>(f, g, "first_mode_estimate_hz", s.first_mode_estimate_hz);
+  write_attribute<double>(f, g, "f_max_multiple", s.f_max_multiple);
   write_attribute(f, g, "solver_options", s.solver_options);
 }
 
@@ -82,6 +83,7 @@ model::ModalSolveRecord read_solve_record(const File& f, const std::string& g) {
   s.found_in_interval = read_attribute<std::int64_t>(f, g, "found_in_interval");
   s.shifts = read_attribute<std::int64_t>(f, g, "shifts");
   s.first_mode_estimate_hz = read_attribute<double>(f, g, "first_mode_estimate_hz");
+  s.f_max_multiple = read_attribute<double>(f, g, "f_max_multiple");
   s.solver_options = read_string_attribute(f, g, "solver_options");
   return s;
 }
@@ -248,6 +250,9 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   write_material(file, "/material", h.material);
   create_group(file, "/settings");
   write_attribute<double>(file, "/settings", "f_max_multiple", h.solve.f_max_multiple);
+  write_attribute<double>(file, "/settings", "band_top_hz", h.band.top_hz);
+  write_attribute<double>(file, "/settings", "band_largest_piece_m", h.band.largest_piece_m);
+  write_attribute<double>(file, "/settings", "band_max_multiple", h.band.max_multiple);
   write_attribute<double>(file, "/settings", "elements_per_wavelength", h.elements_per_wavelength);
   write_attribute<double>(file, "/settings", "min_ratio", h.min_ratio);
   write_attribute<double>(file, "/settings", "cluster_gap", h.solve.cluster_gap);
@@ -281,6 +286,9 @@ model::ModalBank read_modal_bank(const std::string& path) {
   // The solve's settings as stored; max_iterations and nev_per_shift are not (they change the work,
   // not the result) and read back as 0.
   h.solve.f_max_multiple = read_attribute<double>(file, "/settings", "f_max_multiple");
+  h.band.top_hz = read_attribute<double>(file, "/settings", "band_top_hz");
+  h.band.largest_piece_m = read_attribute<double>(file, "/settings", "band_largest_piece_m");
+  h.band.max_multiple = read_attribute<double>(file, "/settings", "band_max_multiple");
   h.elements_per_wavelength = read_attribute<double>(file, "/settings", "elements_per_wavelength");
   h.min_ratio = read_attribute<double>(file, "/settings", "min_ratio");
   h.solve.cluster_gap = read_attribute<double>(file, "/settings", "cluster_gap");

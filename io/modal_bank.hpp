@@ -13,7 +13,7 @@
 namespace clatter::io {
 
 inline constexpr const char* kModalBankFormat = "clatter-modal-bank";
-inline constexpr int kModalBankFormatVersion = 2;  // 2: acoustic transfer per mode
+inline constexpr int kModalBankFormatVersion = 3;  // 2: acoustic transfer per mode; 3: a band per entry
 
 // Writes atomically; every dataset shuffled, deflated and Fletcher-32 checksummed. Each entry's
 // wall times go under /provenance/run/entries (left out of the content hash).

@@ -4,6 +4,7 @@
 // synthesizer renders from. Per normalized ellipsoid (a <= b <= c, a^2 + b^2 + c^2 = 1 m^2) of one
 // material: every free vibration mode in [f_1, f_max], with its mass-normalized shape on the surface.
 // Numbers and vectors only; std only.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -32,6 +33,7 @@ struct ModalSolveRecord {
   std::int64_t shifts = 0;                 // shifts factorised
   double first_mode_estimate_hz = 0;       // f_1 from the coarse pre-solve that set h and the interval
   std::string solver_options;              // the PETSc/SLEPc options of the solve
+  double f_max_multiple = 0;               // k of this entry's band [f_1, k f_1] (ModalBand)
 };
 
 // Wall times and memory of an entry: provenance of one run, left out of the content hash.
@@ -116,7 +118,7 @@ struct TransferSettings {
 // that estimates f_1 with it. The bank file holds the first five (/settings); max_iterations and
 // nev_per_shift change the work, not the result, so they are not stored and read back as 0.
 struct ModalSolveSettings {
-  double f_max_multiple = 4;             // f_max = f_max_multiple * f_1, per entry
+  double f_max_multiple = 4;             // f_max = f_max_multiple * f_1 (a bank: the smallest; ModalBand)
   double cluster_gap = 5e-3;             // relative frequency gap that separates multiplets
   double degenerate_gap = 1e-8;          // Ritz values closer than this get the reference-field basis
                                          // (splits far below any mesh asymmetry)
@@ -126,10 +128,28 @@ struct ModalSolveSettings {
   std::int64_t nev_per_shift = 0;        // eigenpairs sought around each shift; 0: SLEPc's default
 };
 
+// The band of each entry (docs/modal.md "Every audible mode"): [f_1, k f_1] with
+//   k = top_hz * largest_piece_m / (2 c f_1),  clamped to [solve.f_max_multiple, max_multiple],
+// c the entry's normalized longest semi-axis: equi-frequency scaling gives a piece of the entry's
+// shape and longest dimension L the base frequency f_0 = f_1 2c / L, so every piece up to
+// largest_piece_m gets every mode up to top_hz. largest_piece_m = 0: k = solve.f_max_multiple.
+struct ModalBand {
+  double top_hz = 20000;          // the top of the audible band
+  double largest_piece_m = 0;     // the longest piece (2c) that gets every mode to top_hz
+  double max_multiple = 64;       // the cost's limit on k
+};
+
+// k of an entry whose normalized longest semi-axis is c_m and first frequency f1_hz.
+inline double band_multiple(const ModalBand& band, double min_multiple, double c_m, double f1_hz) {
+  const double wanted = band.top_hz * band.largest_piece_m / (2 * c_m * f1_hz);
+  return std::max(min_multiple, std::min(band.max_multiple, wanted));
+}
+
 // What every entry of a bank shares: the material and the settings that decide its content.
 struct ModalBankHeader {
   Material material;
-  ModalSolveSettings solve;
+  ModalSolveSettings solve;              // solve.f_max_multiple: the smallest k of any entry
+  ModalBand band;
   double elements_per_wavelength = 0;  // h = shear wavelength at f_max / this
   double min_ratio = 0;                // smallest a/c of the sampled patch
   double coarse_edge_m = 0;            // h of the pre-solve that estimates f_1

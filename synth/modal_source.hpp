@@ -67,6 +67,11 @@ struct ModalVoice {
   double max_radiation_share = 0;         // max over modes of xi_rad / xi_material
   std::size_t skipped_high = 0, skipped_low = 0, skipped_overdamped = 0;
   bool band_short = false;          // the bank's last mode, scaled, is below the top frequency
+  // The share of the object's audible band [f_0, top] that its modes reach, in octaves:
+  // log(min(last mode, top) / f_0) / log(top / f_0); 1 when nothing is missing.
+  double band_share = 1;
+  double band_reach_hz = 0;         // the last mode, scaled (the top of what the object can ring)
+  double band_top_hz = 0;           // the top of the audible band: --max-frequency or 0.45 x the rate
 };
 
 struct ModalStats {
@@ -77,6 +82,7 @@ struct ModalStats {
   // Objects whose bank's last mode, scaled, falls below the top frequency (003 section 5.1: a bank
   // is all-frequency only for gamma small enough): their modes between the two are missing.
   std::size_t band_short = 0;
+  double min_band_share = 1;         // the smallest band_share of any object
   // Impact-listener pairs skipped because the listener lies inside the scaled proxy's multipole
   // region though outside the object (an object whose proxy, scaled to its base frequency, is larger
   // than itself); the objects are named by transfer_short_objects().

@@ -147,7 +147,12 @@ void ModalSource::add_modes(const io::Scene& scene, const io::SceneObject& o, in
   model::Material mat = scene.materials.at(o.material);
   mat.rho_kg_m3 = o.mass_kg / o.volume_m3;
   const double top_hz = std::min(options_.max_frequency_hz, 0.45 * rate_hz);
-  v.band_short = e.frequencies_hz.back() / v.gamma < top_hz;
+  v.band_reach_hz = e.frequencies_hz.back() / v.gamma;
+  v.band_top_hz = top_hz;
+  v.band_short = v.band_reach_hz < top_hz;
+  const double f0_hz = e.frequencies_hz.front() / v.gamma;
+  if (v.band_short && f0_hz < top_hz)
+    v.band_share = std::log(std::max(v.band_reach_hz, f0_hz) / f0_hz) / std::log(top_hz / f0_hz);
   const auto& transfer = prepared_.at(&e).multipoles;
   for (std::size_t k = 0; k < e.modes(); ++k) {
     const double f_hz = e.frequencies_hz[k] / v.gamma, omega = 2 * pi * f_hz;
@@ -272,6 +277,7 @@ void ModalSource::begin(const io::Scene& scene, const std::vector<ObjectModel>& 
     stats_.skipped_low += v.skipped_low;
     stats_.skipped_overdamped += v.skipped_overdamped;
     if (v.band_short) ++stats_.band_short;
+    stats_.min_band_share = std::min(stats_.min_band_share, v.band_share);
     if (v.transfer_bound < 1) ++stats_.bounded;
     if (options_.energy_rule && v.max_radiation_share > 0.01) ++stats_.radiation_damped;
     if (v.own_model) ++stats_.own_models;
@@ -302,6 +308,12 @@ std::vector<std::string> ModalSource::coverage(const std::vector<ObjectModel>& m
                             line.empty() ? "" : "; and its ", ratio, names_[v.bank], min_ratio, v.base_frequency_hz,
                             v.base_frequency_from);
     }
+    if (v.band_short)
+      line += fmt::format("{}modes reach {:.4g} Hz of the top {:.4g} Hz: {:.0f} % of its audible band from {:.4g} Hz (in "
+                          "octaves; {} to a larger band has the rest: docs/modal.md \"Every audible mode\")",
+                          line.empty() ? "its " : "; and its ", v.band_reach_hz,
+                          v.band_top_hz, 100 * v.band_share,
+                          v.modes_of->frequencies_hz.front() / v.gamma, v.own_model ? "an object bank" : "a modal bank");
     if (!line.empty()) lines.push_back(fmt::format("object {}: {}", models[i].object->id, line));
   }
   return lines;

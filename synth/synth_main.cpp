@@ -79,6 +79,10 @@ void print_summary(const std::vector<synth::SoundSource*>& sources, const std::v
   if (m.transfer_short)
     std::printf("clatter-synth: modal: %zu impact-listener pairs skipped for a listener inside a scaled proxy's transfer region\n",
                 m.transfer_short);
+  if (m.objects > 0)
+    std::printf("clatter-synth: modal: band: %zu of %zu objects get every mode of their audible band; the smallest share any "
+                "object gets is %.0f %% (in octaves from its base frequency; per object in --voices, the short ones in the "
+                "coverage list)\n", m.objects - m.band_short, m.objects, 100 * m.min_band_share);
   if (m.band_short)
     std::printf("clatter-synth: modal: warning: for %zu objects the bank's last mode, scaled, lies below the top frequency: "
                 "their modes above it are missing (a bank to a higher f_max multiple has them; docs/modal.md)\n",
@@ -89,16 +93,16 @@ void print_summary(const std::vector<synth::SoundSource*>& sources, const std::v
 // (docs/synth.md "Objects with their own models"; analysis/proxy_table.py compares two renders).
 void write_voices(const std::string& path, const synth::ModalSource& modal, const io::Scene& scene) {
   std::string text = "object,voiced_by,bank,entry,base_frequency_hz,gamma,modes_rendered,f1_hz,f2_hz,f3_hz,f4_hz,f5_hz,"
-                     "impacts,injected_j,radiated_j\n";
+                     "impacts,injected_j,radiated_j,band_reach_hz,band_share\n";
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const synth::ModalVoice& v = modal.voice(i);
     const synth::ObjectEnergy& e = modal.energy().at(i);
     std::string f;
     for (std::size_t k = 0; k < 5; ++k)
       f += k < v.omega_rad_s.size() ? fmt::format("{:.6g},", v.omega_rad_s[k] / (2 * 3.14159265358979323846)) : ",";
-    text += fmt::format("{},{},{},{},{:.6g},{:.6g},{},{}{},{:.6g},{:.6g}\n", scene.objects[i].id, v.own_model ? "own" : "proxy",
+    text += fmt::format("{},{},{},{},{:.6g},{:.6g},{},{}{},{:.6g},{:.6g},{:.6g},{:.4f}\n", scene.objects[i].id, v.own_model ? "own" : "proxy",
                         v.bank, v.own_model ? v.object_entry->key : std::to_string(v.entry), v.base_frequency_hz, v.gamma,
-                        v.modes.size(), f, e.impacts, e.injected_j, e.radiated_j);
+                        v.modes.size(), f, e.impacts, e.injected_j, e.radiated_j, v.band_reach_hz, v.band_share);
   }
   io::write_text_file(path, text, "voices");
 }

@@ -96,9 +96,12 @@ kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<d
   throw kernels::fem::MeshError(fmt::format("no mesh within the quality bounds ({})", reasons));
 }
 
-double modal_edge_length_m(const ModalSpec& spec, double f1_hz) {
-  return spec.header.material.shear_speed_m_s() / (spec.header.solve.f_max_multiple * f1_hz) /
-         spec.header.elements_per_wavelength;
+double entry_band_multiple(const ModalSpec& spec, const std::array<double, 3>& axes, double f1_hz) {
+  return model::band_multiple(spec.header.band, spec.header.solve.f_max_multiple, axes[2], f1_hz);
+}
+
+double modal_edge_length_m(const ModalSpec& spec, double f_max_hz) {
+  return spec.header.material.shear_speed_m_s() / f_max_hz / spec.header.elements_per_wavelength;
 }
 
 FirstModeEstimate estimate_first_mode(MPI_Comm comm, const ModalSpec& spec, const std::array<double, 3>& axes) {
@@ -116,7 +119,6 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
   const auto t_start = clock_type::now();
   const auto& axes = spec.samples_m.at(index);
   const auto& material = spec.header.material;
-  const auto& settings = spec.header.solve;
   model::ModalEntry entry;
   entry.cost.ranks = mpi::size(group);
   double lambda1_estimate = 0;
@@ -126,8 +128,10 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
     entry.cost.estimate_s = since(t0);
   }
   const double f1_estimate_hz = frequency_hz(lambda1_estimate);
+  model::ModalSolveSettings settings = spec.header.solve;
+  settings.f_max_multiple = entry_band_multiple(spec, axes, f1_estimate_hz);
   auto t0 = clock_type::now();
-  const auto mesh = mesh_or_fail(spec, axes, modal_edge_length_m(spec, f1_estimate_hz));
+  const auto mesh = mesh_or_fail(spec, axes, modal_edge_length_m(spec, settings.f_max_multiple * f1_estimate_hz));
   entry.cost.mesh_s = since(t0);
   t0 = clock_type::now();
   std::optional<FemModel> model;
@@ -151,6 +155,7 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
   entry.mesh = mesh_stats(mesh.quality);
   entry.solve = modes.record;
   entry.solve.first_mode_estimate_hz = f1_estimate_hz;
+  entry.solve.f_max_multiple = settings.f_max_multiple;
   store_modes(group, modes, mesh.mesh, mesh.boundary, material, entry);
   const auto& transfer = spec.header.transfer;
   compute_modal_transfer(group, [&transfer](const model::ModalEntry& e, std::size_t mode) { return mode_transfer(e, mode, transfer); },

@@ -60,7 +60,10 @@ void store_modes(MPI_Comm group, const ModeSet& modes, const kernels::fem::Tet10
                  const std::vector<kernels::fem::BoundaryFace>& boundary, const model::Material& material,
                  model::ModalEntry& entry);
 
+// The band multiple k of an entry (model::ModalBand): from its normalized axes and the pre-solve's f_1.
+double entry_band_multiple(const ModalSpec& spec, const std::array<double, 3>& axes, double f1_hz);
+
 // The edge length that resolves the shear wavelength at f_max: c_s / f_max / elements_per_wavelength.
-double modal_edge_length_m(const ModalSpec& spec, double first_frequency_hz);
+double modal_edge_length_m(const ModalSpec& spec, double f_max_hz);
 
 }  // namespace clatter::jobs

@@ -36,10 +36,9 @@ class ModalKind final : public BankKind {
     BankSweep sweep;
     sweep.manifest = {name(), modal_sweep_toml(config, *spec)};
     const auto& m = spec->header.material;
-    sweep.summary = fmt::format("{} ellipsoids of {} (E = {:.4g} Pa, nu = {}, rho = {} kg/m^3); modes to {} f_1; {} with "
-                                "MUMPS",
-                                tasks->size(), m.name, m.youngs_pa, m.poisson, m.rho_kg_m3,
-                                spec->header.solve.f_max_multiple, spec->header.solver_libraries);
+    sweep.summary = fmt::format("{} ellipsoids of {} (E = {:.4g} Pa, nu = {}, rho = {} kg/m^3); {}; {} with MUMPS",
+                                tasks->size(), m.name, m.youngs_pa, m.poisson, m.rho_kg_m3, band_text(spec->header),
+                                spec->header.solver_libraries);
     for (const auto& t : *tasks) sweep.task_names.push_back(t.name);
     sweep.run_task = [spec, tasks](MPI_Comm group, std::size_t t) { return run_modal_task(group, *spec, (*tasks)[t]); };
     const std::string& toml = sweep.manifest.config_toml;

@@ -31,13 +31,12 @@ constexpr double kGroupSpeedupExponent = 0.3;
 constexpr double kTransferExponent = 4.5;
 
 // k c at the top of an entry's range: what sizes its transfer.
-double top_kc(const ModalSpec& spec, double f1_hz, const std::array<double, 3>& axes) {
-  return 2 * std::numbers::pi * f1_hz * spec.header.solve.f_max_multiple * axes[2] /
-         spec.header.transfer.sound_speed_m_s;
+double top_kc(const ModalSpec& spec, double f_max_hz, const std::array<double, 3>& axes) {
+  return 2 * std::numbers::pi * f_max_hz * axes[2] / spec.header.transfer.sound_speed_m_s;
 }
 
 struct EntryPlan {
-  double f1_hz = 0, h_m = 0;
+  double f1_hz = 0, k = 0, h_m = 0;
   long long dofs = 0, modes = 0;
   double task_s = 0, memory_mb = 0;
   std::string failure;  // the mesh or pre-solve failed: the task will fail the same way
@@ -48,10 +47,10 @@ EntryPlan plan_entry(const ModalSpec& spec, std::size_t i) {
   const auto& axes = spec.samples_m[i];
   try {
     const FirstModeEstimate coarse = estimate_first_mode(MPI_COMM_SELF, spec, axes);  // the job's own
-    const double k = spec.header.solve.f_max_multiple;
-    p.modes = petsc::eigenvalues_below(coarse.model.K, coarse.model.M, k * k * coarse.lambda1 * 1.0001) - 6;
     p.f1_hz = coarse.f1_hz();
-    p.h_m = modal_edge_length_m(spec, p.f1_hz);
+    p.k = entry_band_multiple(spec, axes, p.f1_hz);
+    p.modes = petsc::eigenvalues_below(coarse.model.K, coarse.model.M, p.k * p.k * coarse.lambda1 * 1.0001) - 6;
+    p.h_m = modal_edge_length_m(spec, p.k * p.f1_hz);
     p.dofs = mesh_entry(spec, axes, p.h_m).quality.dofs;
   } catch (const std::exception& e) {
     p.failure = e.what();
@@ -76,7 +75,7 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
   const auto entry = build_modal_entry(MPI_COMM_SELF, spec, cal);
   const double cal_transfer_s = entry.cost.transfer_s, cal_s = entry.cost.total_s - cal_transfer_s;
   const double cal_modes = static_cast<double>(std::max<std::size_t>(entry.modes(), 1));
-  const double cal_kc = top_kc(spec, entries[cal].f1_hz, spec.samples_m[cal]);
+  const double cal_kc = top_kc(spec, entries[cal].k * entries[cal].f1_hz, spec.samples_m[cal]);
   // The coarse mesh undercounts the top of the range (its frequencies are high): scaled by what
   // the calibration entry's fine solve found against its coarse count.
   const double count_scale = cal_modes / static_cast<double>(std::max<long long>(entries[cal].modes, 1));
@@ -93,7 +92,7 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     p.modes = std::llround(static_cast<double>(p.modes) * count_scale);
     const double dofs_ratio = static_cast<double>(p.dofs) / cal_dofs;
     const double mode_ratio = static_cast<double>(p.modes) / cal_modes;
-    const double kc_ratio = top_kc(spec, p.f1_hz, spec.samples_m[static_cast<std::size_t>(&p - entries.data())]) / cal_kc;
+    const double kc_ratio = top_kc(spec, p.k * p.f1_hz, spec.samples_m[static_cast<std::size_t>(&p - entries.data())]) / cal_kc;
     p.task_s = cal_s * mode_ratio * std::pow(dofs_ratio, kDofsExponent) / group_speedup +
                cal_transfer_s * mode_ratio * std::pow(kc_ratio, kTransferExponent) / o.ranks_per_task;
     p.memory_mb = cal_memory * std::pow(dofs_ratio, kMemoryExponent) / o.ranks_per_task;
@@ -107,9 +106,9 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
   const double wall_s = list_schedule_s(e.task_s, groups);
   e.signal_lead_s = static_cast<int>(std::max(120.0, 1.2 * *std::max_element(e.task_s.begin(), e.task_s.end()) + 60));
   const auto& m = spec.header.material;
-  e.report = fmt::format("plan: {}: modal bank of {} ellipsoids, {} (c_s = {:.1f} m/s), modes to {} f_1\n",
+  e.report = fmt::format("plan: {}: modal bank of {} ellipsoids, {} (c_s = {:.1f} m/s), {}\n",
                          o.config_path.empty() ? "defaults" : o.config_path, tasks.size(), m.name, m.shear_speed_m_s(),
-                         spec.header.solve.f_max_multiple);
+                         band_text(spec.header));
   e.report += fmt::format("  pre-solves:  every entry's f_1, h, dofs and mode count (coarse inertia) in {:.1f} s here\n",
                           presolve_s);
   e.report += fmt::format("  calibration: {} solved here in {:.1f} s + {:.1f} s transfer: {} modes, {} dofs, {:.0f} MB MUMPS "
@@ -126,8 +125,8 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     const auto& p = entries[i];
     const auto& a = spec.samples_m[i];
     e.report += p.failure.empty()
-                    ? fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  f_1 {:8.1f} Hz  h {:.4f} m  {:7} dofs  ~{:5} modes  "
-                                  "~{}\n", tasks[i].name, a[0], a[1], a[2], p.f1_hz, p.h_m, p.dofs, p.modes,
+                    ? fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  f_1 {:8.1f} Hz  k {:5.2f}  h {:.4f} m  {:7} dofs  ~{:5} modes  "
+                                  "~{}\n", tasks[i].name, a[0], a[1], a[2], p.f1_hz, p.k, p.h_m, p.dofs, p.modes,
                                   clock_text(p.task_s))
                     : fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  will fail: {}\n", tasks[i].name, a[0], a[1], a[2],
                                   p.failure);

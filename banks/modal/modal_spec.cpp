@@ -41,7 +41,14 @@ const io::Schema& modal_schema() {
            {0.0, 1.0, true, true}},
           {"patch.samples", default_samples(), "normalized semi-axes a <= b <= c, a^2 + b^2 + c^2 = 1 [m], one entry "
                                                "each (default: modal-samples output)", {0.0, 1.0, true}, {}, 3},
-          {"modes.f_max_multiple", 4.0, "keep every mode up to f_max = this x f_1", {1.0, 64.0, true}},
+          {"modes.f_max_multiple", 2.0, "the smallest band: every entry keeps every mode up to at least this x f_1",
+           {1.0, 64.0, true}},
+          {"modes.top_hz", 20000.0, "the top of the audible band [Hz]", {0.0, 1e6, true}},
+          {"modes.largest_piece_m", 0.3, "every piece up to this longest dimension (2c, in the bank's material) gets "
+                                         "every mode up to modes.top_hz; 0: the band is f_max_multiple x f_1 [m]",
+           {0.0, 100.0}},
+          {"modes.max_multiple", 64.0, "the largest band multiple an entry may need (its cost's limit)",
+           {1.0, 1000.0, true}},
           {"modes.cluster_gap", 5e-3, "relative gap below which neighbouring frequencies form one multiplet",
            {0.0, 0.1, true}},
           {"mesh.elements_per_wavelength", 3.0, "h = shear wavelength at f_max / this", {1.0, 20.0}},
@@ -110,6 +117,10 @@ ModalSpec make_modal_spec(const io::Config& config) {
   h.min_ratio = config.real("patch.min_ratio");
   h.solve = solve_settings(config);
   h.solve.f_max_multiple = config.real("modes.f_max_multiple");
+  h.band = {config.real("modes.top_hz"), config.real("modes.largest_piece_m"), config.real("modes.max_multiple")};
+  if (h.band.max_multiple < h.solve.f_max_multiple)
+    throw InputError(fmt::format("modes.max_multiple = {} is below modes.f_max_multiple = {}: the band's limit must "
+                                 "allow its smallest multiple", h.band.max_multiple, h.solve.f_max_multiple));
   h.elements_per_wavelength = config.real("mesh.elements_per_wavelength");
   h.coarse_edge_m = config.real("mesh.coarse_edge_m");
   h.transfer.method = "equivalent sources (monopoles on a layer under the surface, 8 parity classes), multipole "
@@ -148,6 +159,14 @@ std::string modal_sweep_toml(const io::Config& config, const ModalSpec& spec) {
                      "rayleigh_alpha_1_s = {:.17g}, rayleigh_beta_s = {:.17g}\n",
                      m.name, table, m.rho_kg_m3, m.youngs_pa, m.poisson, m.damping.value().alpha_1_s,
                      m.damping.value().beta_s);
+}
+
+std::string band_text(const model::ModalBankHeader& h) {
+  const auto& b = h.band;
+  if (b.largest_piece_m <= 0) return fmt::format("modes to {:g} f_1", h.solve.f_max_multiple);
+  return fmt::format("modes to k f_1, k = {:g} Hz x {:g} m / (2 c f_1) within [{:g}, {:g}]: every piece up to {:g} m long "
+                     "gets every mode to {:g} Hz", b.top_hz, b.largest_piece_m, h.solve.f_max_multiple, b.max_multiple,
+                     b.largest_piece_m, b.top_hz);
 }
 
 std::vector<ModalTask> modal_tasks(const ModalSpec& spec) {

@@ -37,6 +37,9 @@ ModalSpec make_modal_spec(const io::Config& config);
 // comments), so a changed table entry makes another sweep (io::sweep_id).
 std::string modal_sweep_toml(const io::Config& config, const ModalSpec& spec);
 
+// The band rule in words (model::ModalBand), for the sweep's summary, `plan` and `info`.
+std::string band_text(const model::ModalBankHeader& header);
+
 // One task per patch sample, named "eNNN".
 struct ModalTask {
   std::size_t entry = 0;

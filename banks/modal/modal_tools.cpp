@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "io/h5.hpp"
 #include "io/modal_bank.hpp"
+#include "banks/modal/modal_spec.hpp"
 #include "kernels/transfer/multipole.hpp"
 
 namespace clatter::jobs {
@@ -81,15 +82,18 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
   out += fmt::format("  material:   {}: rho = {} kg/m^3, E = {:.4g} Pa, nu = {}, c_s = {:.1f} m/s; Rayleigh alpha = {} "
                      "1/s, beta = {} s\n", m.name, m.rho_kg_m3, m.youngs_pa, m.poisson, m.shear_speed_m_s(),
                      m.damping.value_or(model::RayleighDamping{}).alpha_1_s, m.damping.value_or(model::RayleighDamping{}).beta_s);
-  out += fmt::format("  settings:   modes f_1 .. {} f_1; h = shear wavelength at f_max / {}; min a/c {}; multiplets "
-                     "split by < {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", h.solve.f_max_multiple,
+  out += fmt::format("  settings:   {}; h = shear wavelength at f_max / {}; min a/c {}; multiplets "
+                     "split by < {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", band_text(h),
                      h.elements_per_wavelength, h.min_ratio, h.solve.cluster_gap, h.solve.tolerance,
                      h.solve.residual_limit, h.ranks_per_task);
   const auto& tr = h.transfer;
   out += fmt::format("  transfer:   {}; air c = {} m/s, rho = {} kg/m^3; {} fit points per source (per angle), {} sources per wavelength, "
                      "residual target {}, tail {}\n", tr.method, tr.sound_speed_m_s, tr.air_density_kg_m3,
                      tr.points_per_source, tr.sources_per_wavelength, tr.residual_target, tr.tail_tolerance);
-  out += "  entry  a        b        c        modes  f_1 [Hz]   last [Hz]   dofs     max res   min dihedral  time [s]  "
+  out += fmt::format("  band:       entry k: modes [f_1, k f_1]; L_all: the longest piece of the entry's shape (in {}) that gets "
+                     "every mode to {:g} Hz by equi-frequency scaling (f_0 = f_1 2c / L, complete while k f_0 >= {:g} Hz)\n",
+                     m.name, h.band.top_hz, h.band.top_hz);
+  out += "  entry  a        b        c        k      L_all [m]  modes  f_1 [Hz]   last [Hz]   dofs     max res   min dihedral  time [s]  "
          "transfer: max order, max boundary res (normal fraction > 0.3), s  multiplicities (size x count)\n";
   for (std::size_t i = 0; i < bank.entries.size(); ++i) {
     const auto& e = bank.entries[i];
@@ -99,9 +103,13 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
     double boundary = 0;  // over the modes that push the air (a torsional mode's residual is its noise's)
     for (std::size_t k = 0; k < e.modes(); ++k)
       if (t.normal_fraction[k] > 0.3) boundary = std::max(boundary, t.boundary_residual[k]);
-    out += fmt::format("  {:<5}  {:.5f}  {:.5f}  {:.5f}  {:<5}  {:<9.2f}  {:<10.2f}  {:<7}  {:.1e}   {:<12.1f}  {:<8.1f}  "
-                       "{:<3} {:.1e} {:<7.1f}                                        {}\n", i, e.axes_m[0], e.axes_m[1], e.axes_m[2], e.modes(),
-                       e.modes() ? e.frequencies_hz.front() : 0.0, e.modes() ? e.frequencies_hz.back() : 0.0,
+    // Equi-frequency scaling: a piece of this shape and longest dimension L has f_0 = f_1 2c / L,
+    // so it gets every mode to the top while k f_0 >= top, L <= 2 c k f_1 / top.
+    const double k = e.solve.f_max_multiple, f1 = e.modes() ? e.frequencies_hz.front() : 0.0;
+    const double complete_m = 2 * e.axes_m[2] * k * f1 / h.band.top_hz;
+    out += fmt::format("  {:<5}  {:.5f}  {:.5f}  {:.5f}  {:<5.2f}  {:<9.3f}  {:<5}  {:<9.2f}  {:<10.2f}  {:<7}  {:.1e}   {:<12.1f}  {:<8.1f}  "
+                       "{:<3} {:.1e} {:<7.1f}                                        {}\n", i, e.axes_m[0], e.axes_m[1], e.axes_m[2], k, complete_m,
+                       e.modes(), f1, e.modes() ? e.frequencies_hz.back() : 0.0,
                        e.mesh.dofs, worst, e.mesh.min_dihedral_deg, e.cost.total_s, order, boundary, e.cost.transfer_s,
                        multiplicities(e));
   }

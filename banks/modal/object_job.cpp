@@ -131,6 +131,7 @@ model::ObjectEntry build_object_entry(MPI_Comm group, const ObjectSpec& spec, st
   entry.mesh = mesh_stats(mesh.quality);
   entry.solve = modes.record;
   entry.solve.first_mode_estimate_hz = f1_hz;
+  entry.solve.f_max_multiple = std::max(1.0, spec.header.f_max_hz / f1_hz);  // as the solve's settings had it
   model.reset();
   store_modes(group, modes, mesh.mesh, mesh.boundary, material, entry);
   for (const auto& x : entry.surface_nodes_m) e.radius_m = std::max(e.radius_m, std::hypot(x[0], x[1], x[2]));

@@ -27,7 +27,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 # (pairs); every mode up to 1.6 f_1.
 sets=(--set 'patch.samples=[[0.5773502691896258, 0.5773502691896258, 0.5773502691896258],
                             [0.4042260417272216, 0.6467616667635546, 0.6467616667635546]]'
-      --set modes.f_max_multiple=1.6)
+      --set modes.f_max_multiple=1.6 --set modes.largest_piece_m=0)
 run() {  # run NPROCS ARGS...
   local n=$1
   shift

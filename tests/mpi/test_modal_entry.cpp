@@ -53,6 +53,7 @@ jobs::ModalSpec spec_for(const std::string& samples, double f_max_multiple) {
   io::Config config(jobs::modal_schema());
   config.set("patch.samples=" + samples);
   config.set("modes.f_max_multiple=" + std::to_string(f_max_multiple));
+  config.set("modes.largest_piece_m=0");  // the band is f_max_multiple x f_1
   return jobs::make_modal_spec(config);
 }
 
@@ -98,6 +99,28 @@ TEST(ModalEntry, SphereHasEveryMultipletWithLambsMultiplicity) {
   expect_complete(e, k, "sphere");
   const auto expected = lamb_multiplicities(spec.header.material.poisson, k);
   EXPECT_EQ(multiplet_sizes(e), expected);
+}
+
+TEST(ModalEntry, BandGivesTheLargestPieceEveryModeToTheTop) {
+  // A glass sphere piece of diameter L (its normalized proxy: radius r = 1/sqrt 3, longest
+  // semi-axis c = r) has f_0 = f_1 2c / L by equi-frequency scaling; with modes.largest_piece_m = L
+  // it must get every one of Lamb's modes below 20 kHz. L is chosen so that 20 kHz is 1.9 f_0 (in
+  // a gap of Lamb's spectrum, so the mesh's 0.2 % on f_1 cannot move a multiplet across).
+  io::Config config(jobs::modal_schema());
+  config.set("patch.samples=" + samples_text(kSphere, kSphere, kSphere));
+  const auto lamb = reference::lamb_sphere_modes(0.2, 12.0);
+  const double c_s = 3152.1, r = kSphere;  // glass of the built-in table (checked below)
+  const double f1_lamb_hz = lamb.front().omega_a_over_cs * c_s / (2 * std::numbers::pi * r);
+  const double top_hz = 20000, piece_m = 1.9 * 2 * r * f1_lamb_hz / top_hz;
+  config.set("modes.largest_piece_m=" + std::to_string(piece_m));
+  config.set("modes.f_max_multiple=1.2");
+  const auto spec = jobs::make_modal_spec(config);
+  ASSERT_NEAR(spec.header.material.shear_speed_m_s(), c_s, 0.1);
+  const auto e = jobs::build_modal_entry(MPI_COMM_WORLD, spec, 0);
+  if (rank() != 0) return;
+  EXPECT_NEAR(e.solve.f_max_multiple, 1.9, 0.02) << "k = top L / (2 c f_1) from the pre-solve's f_1";
+  expect_complete(e, e.solve.f_max_multiple, "sphere, band from the largest piece");
+  EXPECT_EQ(multiplet_sizes(e), lamb_multiplicities(0.2, top_hz / (f1_lamb_hz * 2 * r / piece_m)));
 }
 
 TEST(ModalEntry, Ellipsoid124IsComplete) {

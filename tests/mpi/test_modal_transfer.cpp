@@ -44,6 +44,7 @@ jobs::ModalSpec spec_for(double a, double b, double c) {
   config.set("patch.samples=" + samples.str());
   config.set("patch.min_ratio=0.2");
   config.set("modes.f_max_multiple=1.5");
+  config.set("modes.largest_piece_m=0");
   return jobs::make_modal_spec(config);
 }
 
