@@ -20,6 +20,7 @@
 #include "kernels/rigid_body.hpp"
 #include "kernels/fracture/tet_mesh.hpp"
 #include "sim/fracture.hpp"
+#include "sim/piece_frequency.hpp"
 #include "sim/impacts.hpp"
 #include "sim/rigid_transform.hpp"
 #include "sim/voronoi.hpp"
@@ -73,36 +74,6 @@ Solid solid_of(const std::vector<Vec3>& vertices, const std::vector<std::array<i
         kernels::fem::lowest_free_mode(vertices, triangles, material.youngs_pa, material.poisson, material.rho_kg_m3).frequency_hz;
   }
   return s;
-}
-
-// A fracture piece's lowest free-vibration frequency, of its convex hull: its own surface is too
-// fine for a quick solve. The hull is taken over the surface's vertices snapped to a grid of 1 % of
-// the piece's size, at most 32 vertices: TetGen 1.5 aborts (an assertion, not an error) on some
-// hulls with near-duplicate vertices and sliver faces, which the fine fracture surfaces make.
-// 0 when the solve does not converge: the synthesizer then computes it from the piece's mesh.
-double piece_base_frequency_hz(const std::vector<Vec3>& surface_m, double volume_m3, const model::Material& material) {
-  Vec3 lo = surface_m.front(), hi = lo;
-  for (const Vec3& x : surface_m)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
-  const double cell = 0.01 * std::sqrt(dot(sub(hi, lo), sub(hi, lo)));
-  std::set<std::array<long long, 3>> seen;
-  std::vector<Vec3> snapped;
-  for (const Vec3& x : surface_m) {
-    const std::array<long long, 3> key{std::llround(x[0] / cell), std::llround(x[1] / cell), std::llround(x[2] / cell)};
-    if (seen.insert(key).second)
-      snapped.push_back({static_cast<double>(key[0]) * cell, static_cast<double>(key[1]) * cell, static_cast<double>(key[2]) * cell});
-  }
-  const io::TriangleMesh hull = convex_hull(snapped, 32);
-  kernels::fem::LowestModeSettings quick;
-  quick.edge_length_m = std::cbrt(volume_m3);  // 10-node elements: a few through the piece suffice
-  quick.tolerance = 1e-6;                      // the frequency to about 1e-6, far below the hull's error
-  quick.max_iterations = 1000;
-  try {
-    return kernels::fem::lowest_free_mode(hull.vertices_m, hull.triangles, material.youngs_pa, material.poisson, material.rho_kg_m3, quick)
-        .frequency_hz;
-  } catch (const std::runtime_error&) {
-    return 0;
-  }
 }
 
 // The table's material as the scene gives it: the bodies' density is their mass over their volume,
@@ -295,7 +266,8 @@ class Simulation {
         Solid piece = solid_of(p.surface_vertices_m, p.surface_triangles, body_material_, false, fmt::format("piece {} of body {}", d, id));
         if (c_.boolean("bodies.base_frequency")) {
           Stage hull_stage("base frequency (FEM of the hull)");
-          piece.base_frequency_hz = piece_base_frequency_hz(p.surface_vertices_m, piece.volume_m3, body_material_);
+          // In the body (principal) frame, where the piece's thinnest extent is its thickness.
+          piece.base_frequency_hz = piece_base_frequency_hz(piece.body_mesh->vertices_m, piece.volume_m3, body_material_);
         }
         const int pid = next_id_++;
         add_body(world, pid, piece, placement, p.velocity_m_s, p.angular_velocity_rad_s, t_s, 0, nullptr, 64);
