@@ -57,20 +57,38 @@ std::array<Eigen::Vector3d, 8> images_of(const Eigen::Vector3d& y) {
 std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit, const SourceLayout& layout,
                                               const std::vector<int>& sigmas) {
   const auto m = static_cast<Eigen::Index>(fit.size()), n = static_cast<Eigen::Index>(layout.sources.size());
-  std::vector<Eigen::MatrixXcd> a(sigmas.size(), Eigen::MatrixXcd(m, n));
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const auto images = images_of(layout.sources.position_m[static_cast<std::size_t>(j)]);
+  std::vector<Eigen::MatrixXcd> a(sigmas.size(), Eigen::MatrixXcd::Zero(m, n));
+  std::vector<double> root_w(fit.size());
+  for (std::size_t i = 0; i < fit.size(); ++i) root_w[i] = std::sqrt(fit.weight_m2[i]);
+  std::vector<std::complex<double>> sums(sigmas.size());
+  // Adds the column of a monopole at y, times weight(class), to unknowns' columns via `add`.
+  const auto accumulate = [&](const Eigen::Vector3d& y, const auto& add) {
+    const auto images = images_of(y);
     for (Eigen::Index i = 0; i < m; ++i) {
       const auto ui = static_cast<std::size_t>(i);
       const auto g = image_greens(k, fit.position_m[ui], fit.normal[ui], images);
-      const double w = std::sqrt(fit.weight_m2[ui]);
       for (std::size_t c = 0; c < sigmas.size(); ++c) {
         std::complex<double> sum = 0;
         for (int t = 0; t < 8; ++t) sum += parity_sign(t, sigmas[c]) * g[static_cast<std::size_t>(t)].normal_derivative;
-        a[c](i, j) = w * sum;
+        sums[c] = root_w[ui] * sum;
       }
+      add(i);
     }
+  };
+  if (layout.spread.empty()) {
+    for (Eigen::Index j = 0; j < n; ++j)
+      accumulate(layout.sources.position_m[static_cast<std::size_t>(j)], [&](Eigen::Index i) {
+        for (std::size_t c = 0; c < sigmas.size(); ++c) a[c](i, j) = sums[c];
+      });
+    return a;
   }
+  for (const SpreadPoint& p : layout.spread)
+    accumulate(p.position_m, [&](Eigen::Index i) {
+      for (std::size_t t = 0; t < 2; ++t) {
+        if (p.unknown[t] < 0) continue;
+        for (std::size_t c = 0; c < sigmas.size(); ++c) a[c](i, p.unknown[t]) += p.weight_for(t, sigmas[c]) * sums[c];
+      }
+    });
   return a;
 }
 
@@ -140,14 +158,34 @@ SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredDa
   return out;
 }
 
+ClassMonopoles class_monopoles(const SourceFit& fit, const SourceLayout& layout) {
+  ClassMonopoles out;
+  if (layout.spread.empty()) {
+    out.position_m = layout.sources.position_m;
+    for (const auto& pf : fit.classes) out.strengths.push_back(pf.strengths);
+    return out;
+  }
+  for (const SpreadPoint& p : layout.spread) out.position_m.push_back(p.position_m);
+  for (const auto& pf : fit.classes) {
+    Eigen::VectorXcd s = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(layout.spread.size()));
+    for (std::size_t q = 0; q < layout.spread.size(); ++q)
+      for (std::size_t t = 0; t < 2; ++t)
+        if (layout.spread[q].unknown[t] >= 0)
+          s(static_cast<Eigen::Index>(q)) += layout.spread[q].weight_for(t, pf.sigma) * pf.strengths(layout.spread[q].unknown[t]);
+    out.strengths.push_back(std::move(s));
+  }
+  return out;
+}
+
 std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const SourceLayout& layout,
                                      const SurfacePoints& points) {
   const std::size_t m = points.size();
+  const ClassMonopoles sources = class_monopoles(fit, layout);
   std::vector<ClassField> out;
   for (const auto& pf : fit.classes)
     out.push_back({pf.sigma, std::vector<std::complex<double>>(m), std::vector<std::complex<double>>(m)});
-  for (std::size_t j = 0; j < layout.sources.size(); ++j) {
-    const auto images = images_of(layout.sources.position_m[j]);
+  for (std::size_t j = 0; j < sources.position_m.size(); ++j) {
+    const auto images = images_of(sources.position_m[j]);
     for (std::size_t i = 0; i < m; ++i) {
       const auto g = image_greens(k_rad_m, points.position_m[i], points.normal[i], images);
       for (std::size_t c = 0; c < out.size(); ++c) {
@@ -157,7 +195,7 @@ std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const
           p += sign * g[static_cast<std::size_t>(t)].value;
           dp += sign * g[static_cast<std::size_t>(t)].normal_derivative;
         }
-        const std::complex<double> strength = fit.classes[c].strengths(static_cast<Eigen::Index>(j));
+        const std::complex<double> strength = sources.strengths[c](static_cast<Eigen::Index>(j));
         out[c].pressure[i] += strength * p;
         out[c].normal_derivative[i] += strength * dp;
       }
