@@ -51,6 +51,23 @@ std::array<Eigen::Vector3d, 8> images_of(const Eigen::Vector3d& y) {
   return images;
 }
 
+// For each point, the coarsest level of `row` it may use: the row's distance (to the level's
+// samples, less half their spacing) is at least kLevelDistance times the level's spacing. Levels
+// are tried coarsest first, so only points near the row pay for the finer distances.
+std::vector<std::size_t> row_levels(const SpreadRow& row, const SurfacePoints& points) {
+  std::vector<std::size_t> level(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (std::size_t l = row.levels.size(); l-- > 1;) {
+      double d = INFINITY;
+      for (const SpreadPoint& p : row.levels[l]) d = std::min(d, (points.position_m[i] - p.position_m).squaredNorm());
+      if (std::sqrt(d) - 0.5 * row.spacing_m[l] >= kLevelDistance * row.spacing_m[l]) {
+        level[i] = l;
+        break;
+      }
+    }
+  return level;
+}
+
 // Row i, column j of class sigma: sqrt(w_i) d/dn_i of sum_t sign(t, sigma) G(x_i, mirror_t(y_j)),
 // for every requested class in one pass over the images (the Green's functions, not the classes,
 // are the cost).
@@ -82,13 +99,28 @@ std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit
       });
     return a;
   }
-  for (const SpreadPoint& p : layout.spread)
-    accumulate(p.position_m, [&](Eigen::Index i) {
-      for (std::size_t t = 0; t < 2; ++t) {
-        if (p.unknown[t] < 0) continue;
-        for (std::size_t c = 0; c < sigmas.size(); ++c) a[c](i, p.unknown[t]) += p.weight_for(t, sigmas[c]) * sums[c];
+  for (const SpreadRow& row : layout.spread) {
+    const auto level = row_levels(row, fit);
+    for (std::size_t l = 0; l < row.levels.size(); ++l) {
+      std::vector<std::size_t> near;
+      for (std::size_t i = 0; i < fit.size(); ++i)
+        if (level[i] == l) near.push_back(i);
+      if (near.empty()) continue;
+      for (const SpreadPoint& p : row.levels[l]) {
+        const auto images = images_of(p.position_m);
+        for (const std::size_t ui : near) {
+          const auto g = image_greens(k, fit.position_m[ui], fit.normal[ui], images);
+          for (std::size_t c = 0; c < sigmas.size(); ++c) {
+            std::complex<double> sum = 0;
+            for (int t = 0; t < 8; ++t) sum += parity_sign(t, sigmas[c]) * g[static_cast<std::size_t>(t)].normal_derivative;
+            sum *= root_w[ui];
+            for (std::size_t tap = 0; tap < 2; ++tap)
+              if (p.unknown[tap] >= 0) a[c](static_cast<Eigen::Index>(ui), p.unknown[tap]) += p.weight_for(tap, sigmas[c]) * sum;
+          }
+        }
       }
-    });
+    }
+  }
   return a;
 }
 
@@ -158,6 +190,41 @@ SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredDa
   return out;
 }
 
+namespace {
+
+// Per fitted class, the strengths of a level's samples: their unknowns' shares summed.
+std::vector<std::complex<double>> sample_strengths(const std::vector<SpreadPoint>& samples, const ParityFit& pf) {
+  std::vector<std::complex<double>> out(samples.size(), 0.0);
+  for (std::size_t q = 0; q < samples.size(); ++q)
+    for (std::size_t t = 0; t < 2; ++t)
+      if (samples[q].unknown[t] >= 0) out[q] += samples[q].weight_for(t, pf.sigma) * pf.strengths(samples[q].unknown[t]);
+  return out;
+}
+
+// Adds to `out` the field of monopoles at `positions` (per class strengths) at the points `which`.
+void add_fields(double k, const std::vector<Eigen::Vector3d>& positions,
+                const std::vector<std::vector<std::complex<double>>>& strengths, const SurfacePoints& points,
+                const std::vector<std::size_t>& which, std::vector<ClassField>& out) {
+  for (std::size_t j = 0; j < positions.size(); ++j) {
+    const auto images = images_of(positions[j]);
+    for (const std::size_t i : which) {
+      const auto g = image_greens(k, points.position_m[i], points.normal[i], images);
+      for (std::size_t c = 0; c < out.size(); ++c) {
+        std::complex<double> p = 0, dp = 0;
+        for (int t = 0; t < 8; ++t) {
+          const double sign = parity_sign(t, out[c].sigma);
+          p += sign * g[static_cast<std::size_t>(t)].value;
+          dp += sign * g[static_cast<std::size_t>(t)].normal_derivative;
+        }
+        out[c].pressure[i] += strengths[c][j] * p;
+        out[c].normal_derivative[i] += strengths[c][j] * dp;
+      }
+    }
+  }
+}
+
+}  // namespace
+
 ClassMonopoles class_monopoles(const SourceFit& fit, const SourceLayout& layout) {
   ClassMonopoles out;
   if (layout.spread.empty()) {
@@ -165,13 +232,13 @@ ClassMonopoles class_monopoles(const SourceFit& fit, const SourceLayout& layout)
     for (const auto& pf : fit.classes) out.strengths.push_back(pf.strengths);
     return out;
   }
-  for (const SpreadPoint& p : layout.spread) out.position_m.push_back(p.position_m);
+  for (const SpreadRow& row : layout.spread)
+    for (const SpreadPoint& p : row.levels.front()) out.position_m.push_back(p.position_m);
   for (const auto& pf : fit.classes) {
-    Eigen::VectorXcd s = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(layout.spread.size()));
-    for (std::size_t q = 0; q < layout.spread.size(); ++q)
-      for (std::size_t t = 0; t < 2; ++t)
-        if (layout.spread[q].unknown[t] >= 0)
-          s(static_cast<Eigen::Index>(q)) += layout.spread[q].weight_for(t, pf.sigma) * pf.strengths(layout.spread[q].unknown[t]);
+    Eigen::VectorXcd s(static_cast<Eigen::Index>(out.position_m.size()));
+    Eigen::Index at = 0;
+    for (const SpreadRow& row : layout.spread)
+      for (const auto& v : sample_strengths(row.levels.front(), pf)) s(at++) = v;
     out.strengths.push_back(std::move(s));
   }
   return out;
@@ -180,25 +247,29 @@ ClassMonopoles class_monopoles(const SourceFit& fit, const SourceLayout& layout)
 std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const SourceLayout& layout,
                                      const SurfacePoints& points) {
   const std::size_t m = points.size();
-  const ClassMonopoles sources = class_monopoles(fit, layout);
   std::vector<ClassField> out;
   for (const auto& pf : fit.classes)
     out.push_back({pf.sigma, std::vector<std::complex<double>>(m), std::vector<std::complex<double>>(m)});
-  for (std::size_t j = 0; j < sources.position_m.size(); ++j) {
-    const auto images = images_of(sources.position_m[j]);
-    for (std::size_t i = 0; i < m; ++i) {
-      const auto g = image_greens(k_rad_m, points.position_m[i], points.normal[i], images);
-      for (std::size_t c = 0; c < out.size(); ++c) {
-        std::complex<double> p = 0, dp = 0;
-        for (int t = 0; t < 8; ++t) {
-          const double sign = parity_sign(t, out[c].sigma);
-          p += sign * g[static_cast<std::size_t>(t)].value;
-          dp += sign * g[static_cast<std::size_t>(t)].normal_derivative;
-        }
-        const std::complex<double> strength = sources.strengths[c](static_cast<Eigen::Index>(j));
-        out[c].pressure[i] += strength * p;
-        out[c].normal_derivative[i] += strength * dp;
-      }
+  if (layout.spread.empty()) {
+    std::vector<std::size_t> all(m);
+    for (std::size_t i = 0; i < m; ++i) all[i] = i;
+    std::vector<std::vector<std::complex<double>>> strengths;
+    for (const auto& pf : fit.classes) strengths.emplace_back(pf.strengths.data(), pf.strengths.data() + pf.strengths.size());
+    add_fields(k_rad_m, layout.sources.position_m, strengths, points, all, out);
+    return out;
+  }
+  for (const SpreadRow& row : layout.spread) {
+    const auto level = row_levels(row, points);
+    for (std::size_t l = 0; l < row.levels.size(); ++l) {
+      std::vector<std::size_t> near;
+      for (std::size_t i = 0; i < m; ++i)
+        if (level[i] == l) near.push_back(i);
+      if (near.empty()) continue;
+      std::vector<Eigen::Vector3d> positions;
+      for (const SpreadPoint& p : row.levels[l]) positions.push_back(p.position_m);
+      std::vector<std::vector<std::complex<double>>> strengths;
+      for (const auto& pf : fit.classes) strengths.push_back(sample_strengths(row.levels[l], pf));
+      add_fields(k_rad_m, positions, strengths, points, near, out);
     }
   }
   return out;

@@ -26,12 +26,22 @@ struct SpreadPoint {
   double weight_for(std::size_t tap, int sigma) const { return (plane & sigma) ? odd_weight[tap] : weight[tap]; }
 };
 
+// One row of spread sources, sampled at levels of spacing: levels[0] within the row's depth (the
+// field's definition), each next one about 4x coarser, down to one sample per node. A level
+// spaced s integrates the row's smooth density to ~e^(-2 pi D / s) at distance D, so a point at
+// least kLevelDistance s from the row may use it (e^(-4 pi) ~ 3.5e-6).
+struct SpreadRow {
+  std::vector<std::vector<SpreadPoint>> levels;
+  std::vector<double> spacing_m;  // largest gap between neighbouring samples, per level
+};
+inline constexpr double kLevelDistance = 2.0;
+
 struct SourceLayout {
   SurfacePoints sources;  // first octant, one per unknown (inner_layer, or a spread source's node); positions only matter
   // Empty: unknown j is a monopole at sources[j]. Else unknown j is a line density along its row,
-  // linear between neighbouring nodes (a hat), sampled at these points, which lie closer together
-  // than the row's depth so that the line's field is smooth on the surface (docs/transfer.md).
-  std::vector<SpreadPoint> spread;
+  // linear between neighbouring nodes (a hat), sampled closer together than the row's depth so
+  // that the line's field is smooth on the surface (docs/transfer.md).
+  std::vector<SpreadRow> spread;
 };
 
 // g on the fit grid: [mirror s][point i] of the octant grid's mirror images.

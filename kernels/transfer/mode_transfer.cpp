@@ -97,16 +97,11 @@ std::vector<double> row_angles(int n, bool midpoint) {
   return t;
 }
 
-// One row of spread sources at t: `nodes` unknowns (hats, equally spaced in p) sampled at
-// `per_node` points each.
-void add_spread_row(const std::array<double, 3>& inner, double t, int nodes, int per_node, SourceLayout& layout) {
+// The samples of one row of spread sources at t: `nodes` unknowns from `first` on (hats, equally
+// spaced in p), sampled at `per_node` points each.
+std::vector<SpreadPoint> spread_samples(const std::array<double, 3>& inner, double t, int first, int nodes, int per_node) {
   const double quarter = std::numbers::pi / 2, node_step = quarter / nodes, step = node_step / per_node;
-  const int first = static_cast<int>(layout.sources.size());
-  for (int l = 0; l < nodes; ++l) {
-    layout.sources.position_m.push_back(RimLayer::at(inner, t, (l + 0.5) * node_step));
-    layout.sources.normal.emplace_back(0, 0, 0);
-    layout.sources.weight_m2.push_back(0);
-  }
+  std::vector<SpreadPoint> out;
   for (int q = 0; q < nodes * per_node; ++q) {
     const double p = (q + 0.5) * step, f = p / node_step - 0.5;  // f: position in node units
     SpreadPoint sp;
@@ -129,8 +124,30 @@ void add_spread_row(const std::array<double, 3>& inner, double t, int nodes, int
     }
     for (double& w : sp.weight) w /= per_node;
     for (double& w : sp.odd_weight) w /= per_node;
-    layout.spread.push_back(sp);
+    out.push_back(sp);
   }
+  return out;
+}
+
+// One row of spread sources: its unknowns' nodes and its sample levels (per_node, per_node / 4,
+// ... down to 1 per node).
+void add_spread_row(const std::array<double, 3>& inner, double t, int nodes, int per_node, SourceLayout& layout) {
+  const int first = static_cast<int>(layout.sources.size());
+  for (int l = 0; l < nodes; ++l) {
+    layout.sources.position_m.push_back(RimLayer::at(inner, t, (l + 0.5) * std::numbers::pi / 2 / nodes));
+    layout.sources.normal.emplace_back(0, 0, 0);
+    layout.sources.weight_m2.push_back(0);
+  }
+  SpreadRow row;
+  for (int per = per_node;; per = std::max(1, per / 4)) {
+    row.levels.push_back(spread_samples(inner, t, first, nodes, per));
+    const auto& samples = row.levels.back();
+    double gap = 0;
+    for (std::size_t q = 1; q < samples.size(); ++q) gap = std::max(gap, (samples[q].position_m - samples[q - 1].position_m).norm());
+    row.spacing_m.push_back(gap);
+    if (per == 1) break;
+  }
+  layout.spread.push_back(std::move(row));
 }
 
 Grids make_rim_grids(const std::array<double, 3>& axes, double k, double data_spacing_m, double inner_fraction,
