@@ -51,13 +51,17 @@ std::array<Eigen::Vector3d, 8> images_of(const Eigen::Vector3d& y) {
   return images;
 }
 
-// For each point, the coarsest level of `row` it may use: the row's distance (to the level's
-// samples, less half their spacing) is at least kLevelDistance times the level's spacing. Levels
-// are tried coarsest first, so only points near the row pay for the finer distances.
-std::vector<std::size_t> row_levels(const SpreadRow& row, const SurfacePoints& points) {
+// For the fill, each fit point's coarsest level of `row`: the row's distance (to the level's
+// samples, less half their spacing) is at least kLevelDistance times the level's spacing, and the
+// spacing is within a tenth of the air wavelength (the midpoint rule's radiating error, ~(k s)^2
+// / 24, does not fall with distance). Levels are tried coarsest first, so only points near the
+// row pay for the finer distances.
+std::vector<std::size_t> row_levels(double k, const SpreadRow& row, const SurfacePoints& points) {
   std::vector<std::size_t> level(points.size(), 0);
+  const double most = 2 * std::numbers::pi / k / 10;
   for (std::size_t i = 0; i < points.size(); ++i)
     for (std::size_t l = row.levels.size(); l-- > 1;) {
+      if (row.spacing_m[l] > most) continue;
       double d = INFINITY;
       for (const SpreadPoint& p : row.levels[l]) d = std::min(d, (points.position_m[i] - p.position_m).squaredNorm());
       if (std::sqrt(d) - 0.5 * row.spacing_m[l] >= kLevelDistance * row.spacing_m[l]) {
@@ -100,7 +104,7 @@ std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit
     return a;
   }
   for (const SpreadRow& row : layout.spread) {
-    const auto level = row_levels(row, fit);
+    const auto level = row_levels(k, row, fit);
     for (std::size_t l = 0; l < row.levels.size(); ++l) {
       std::vector<std::size_t> near;
       for (std::size_t i = 0; i < fit.size(); ++i)
@@ -258,19 +262,16 @@ std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const
     add_fields(k_rad_m, layout.sources.position_m, strengths, points, all, out);
     return out;
   }
+  // The field itself from the finest samples only: the residual and the far-field checks see the
+  // sources the expansion is built from, whatever the fill approximated.
   for (const SpreadRow& row : layout.spread) {
-    const auto level = row_levels(row, points);
-    for (std::size_t l = 0; l < row.levels.size(); ++l) {
-      std::vector<std::size_t> near;
-      for (std::size_t i = 0; i < m; ++i)
-        if (level[i] == l) near.push_back(i);
-      if (near.empty()) continue;
-      std::vector<Eigen::Vector3d> positions;
-      for (const SpreadPoint& p : row.levels[l]) positions.push_back(p.position_m);
-      std::vector<std::vector<std::complex<double>>> strengths;
-      for (const auto& pf : fit.classes) strengths.push_back(sample_strengths(row.levels[l], pf));
-      add_fields(k_rad_m, positions, strengths, points, near, out);
-    }
+    std::vector<std::size_t> all(m);
+    for (std::size_t i = 0; i < m; ++i) all[i] = i;
+    std::vector<Eigen::Vector3d> positions;
+    for (const SpreadPoint& p : row.levels.front()) positions.push_back(p.position_m);
+    std::vector<std::vector<std::complex<double>>> strengths;
+    for (const auto& pf : fit.classes) strengths.push_back(sample_strengths(row.levels.front(), pf));
+    add_fields(k_rad_m, positions, strengths, points, all, out);
   }
   return out;
 }

@@ -27,9 +27,10 @@ struct SpreadPoint {
 };
 
 // One row of spread sources, sampled at levels of spacing: levels[0] within the row's depth (the
-// field's definition), each next one about 4x coarser, down to one sample per node. A level
-// spaced s integrates the row's smooth density to ~e^(-2 pi D / s) at distance D, so a point at
-// least kLevelDistance s from the row may use it (e^(-4 pi) ~ 3.5e-6).
+// field's definition: the residual, the field and the expansion use it), each next one about 4x
+// coarser, down to one sample per node. A level spaced s integrates the row's smooth density to
+// ~e^(-2 pi D / s) at distance D, so a fit point at least kLevelDistance s from the row may use it
+// in the fill (e^(-4 pi) ~ 3.5e-6) if s is also within a tenth of the wavelength.
 struct SpreadRow {
   std::vector<std::vector<SpreadPoint>> levels;
   std::vector<double> spacing_m;  // largest gap between neighbouring samples, per level
