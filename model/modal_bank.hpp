@@ -112,6 +112,12 @@ struct TransferSettings {
   // A ceiling on the sources of one octant (the QR costs their cube): past it both counts shrink
   // alike and the residual says what that cost. The default sphere entry's top mode needs ~580.
   int max_sources_per_octant = 900;
+  // Flat bodies (b >= rim_aspect a): the rim-graded layout instead (docs/transfer.md "Flat
+  // bodies"): spread sources on the confocal ellipsoid of thin semi-axis rim_inner_fraction a,
+  // neighbours within rim_spacing_per_depth of their depth; one attempt.
+  double rim_aspect = 2;
+  double rim_inner_fraction = 0.3;
+  double rim_spacing_per_depth = 0.7;
 };
 
 // How the eigen-solve of every entry is set up (banks/modal/modal_solve.hpp), and the pre-solve

@@ -57,6 +57,44 @@ SurfacePoints octant_grid(const std::array<double, 3>& axes_m, int n_u, int n_v)
   return points;
 }
 
+SurfacePoints rim_grid(const std::array<double, 3>& axes_m, const std::vector<int>& per_row, bool midpoint) {
+  const auto [a, b, c] = axes_m;
+  const auto rule = [midpoint](int n) {
+    if (!midpoint) return gauss_legendre(n, 0, std::numbers::pi / 2);
+    GaussRule r;
+    for (int i = 0; i < n; ++i) {
+      r.x.push_back((i + 0.5) * std::numbers::pi / 2 / n);
+      r.w.push_back(std::numbers::pi / 2 / n);
+    }
+    return r;
+  };
+  const GaussRule rt = rule(static_cast<int>(per_row.size()));
+  SurfacePoints points;
+  for (std::size_t i = 0; i < per_row.size(); ++i) {
+    const double st = std::sin(rt.x[i]), ct = std::cos(rt.x[i]);
+    const GaussRule rp = rule(per_row[i]);
+    for (std::size_t j = 0; j < rp.x.size(); ++j) {
+      const double sp = std::sin(rp.x[j]), cp = std::cos(rp.x[j]);
+      const Eigen::Vector3d x(a * ct, b * st * cp, c * st * sp);
+      const Eigen::Vector3d xt(-a * st, b * ct * cp, c * ct * sp), xp(0, -b * st * sp, c * st * cp);
+      const Eigen::Vector3d cross = xt.cross(xp);  // outward: at (0, b, 0) it is (0, ac, 0)
+      points.position_m.push_back(x);
+      points.normal.push_back(cross.normalized());
+      points.weight_m2.push_back(cross.norm() * rt.w[i] * rp.w[j]);
+    }
+  }
+  return points;
+}
+
+std::array<double, 2> rim_lengths_m(const std::array<double, 3>& axes_m) {
+  return {quarter_perimeter(axes_m[0], axes_m[2]), quarter_perimeter(axes_m[1], axes_m[2])};
+}
+
+std::array<double, 3> confocal_axes_m(const std::array<double, 3>& axes_m, double t) {
+  const double shift = (1 - t * t) * axes_m[0] * axes_m[0];
+  return {t * axes_m[0], std::sqrt(axes_m[1] * axes_m[1] - shift), std::sqrt(axes_m[2] * axes_m[2] - shift)};
+}
+
 std::array<double, 2> octant_lengths_m(const std::array<double, 3>& axes_m) {
   const auto [a, b, c] = axes_m;
   return {std::max(quarter_perimeter(a, c), quarter_perimeter(b, c)), quarter_perimeter(a, b)};

@@ -45,6 +45,25 @@ SurfacePoints inner_layer(const std::array<double, 3>& axes_m, const SurfacePoin
 std::array<int, 2> inner_layer_counts(const std::array<double, 3>& axes_m, double depth, double spacing_cap_m,
                                       int minimum);
 
+// Points in angles with the pole on the thin axis, x = a cos t, y = b sin t cos p, z = c sin t sin p
+// (t, p in (0, pi/2)): Gauss-Legendre rows in t, row i with per_row[i] Gauss-Legendre points in p,
+// with area weights. At fixed p, t is the eccentric anomaly of the meridian ellipse through the
+// rim (t = pi/2), so for confocal ellipsoids the same (t, p) pair points across the thin gap the
+// way elliptic coordinates do: rows can follow the rim without the z pole of octant_grid on it.
+// `midpoint`: equally spaced angles (the midpoint rule) instead of Gauss-Legendre nodes, for
+// sources, whose largest gap, not a quadrature, is what matters (Gauss-Legendre's middle gaps are
+// pi / 2 times the mean).
+SurfacePoints rim_grid(const std::array<double, 3>& axes_m, const std::vector<int>& per_row, bool midpoint = false);
+
+// rim_grid's extent along each angle [m]: the longest quarter meridian (a, c), and the quarter
+// rim (b, c).
+std::array<double, 2> rim_lengths_m(const std::array<double, 3>& axes_m);
+
+// The ellipsoid confocal with axes_m whose thin semi-axis is t a (0 < t <= 1): semi-axes
+// sqrt(axes^2 - (1 - t^2) a^2). Its rim lies (1 - t^2) a^2 / (2 b) inside the rim of axes_m, a
+// fixed fraction of the rim's own curvature radius a^2 / b, and its faces (1 - t) a inside.
+std::array<double, 3> confocal_axes_m(const std::array<double, 3>& axes_m, double t);
+
 // Mirror image s in 0..7: bit 0 flips x, bit 1 y, bit 2 z.
 inline Eigen::Vector3d mirror(const Eigen::Vector3d& x, int s) {
   return {(s & 1) ? -x.x() : x.x(), (s & 2) ? -x.y() : x.y(), (s & 4) ? -x.z() : x.z()};

@@ -51,23 +51,77 @@ std::array<Eigen::Vector3d, 8> images_of(const Eigen::Vector3d& y) {
   return images;
 }
 
+// For the fill, each fit point's coarsest level of `row`: the row's distance (to the level's
+// samples, less half their spacing) is at least kLevelDistance times the level's spacing, and the
+// spacing is within a tenth of the air wavelength (the midpoint rule's radiating error, ~(k s)^2
+// / 24, does not fall with distance). Levels are tried coarsest first, so only points near the
+// row pay for the finer distances.
+std::vector<std::size_t> row_levels(double k, const SpreadRow& row, const SurfacePoints& points) {
+  std::vector<std::size_t> level(points.size(), 0);
+  const double most = 2 * std::numbers::pi / k / 10;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (std::size_t l = row.levels.size(); l-- > 1;) {
+      if (row.spacing_m[l] > most) continue;
+      double d = INFINITY;
+      for (const SpreadPoint& p : row.levels[l]) d = std::min(d, (points.position_m[i] - p.position_m).squaredNorm());
+      if (std::sqrt(d) - 0.5 * row.spacing_m[l] >= kLevelDistance * row.spacing_m[l]) {
+        level[i] = l;
+        break;
+      }
+    }
+  return level;
+}
+
 // Row i, column j of class sigma: sqrt(w_i) d/dn_i of sum_t sign(t, sigma) G(x_i, mirror_t(y_j)),
 // for every requested class in one pass over the images (the Green's functions, not the classes,
 // are the cost).
 std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit, const SourceLayout& layout,
                                               const std::vector<int>& sigmas) {
   const auto m = static_cast<Eigen::Index>(fit.size()), n = static_cast<Eigen::Index>(layout.sources.size());
-  std::vector<Eigen::MatrixXcd> a(sigmas.size(), Eigen::MatrixXcd(m, n));
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const auto images = images_of(layout.sources.position_m[static_cast<std::size_t>(j)]);
+  std::vector<Eigen::MatrixXcd> a(sigmas.size(), Eigen::MatrixXcd::Zero(m, n));
+  std::vector<double> root_w(fit.size());
+  for (std::size_t i = 0; i < fit.size(); ++i) root_w[i] = std::sqrt(fit.weight_m2[i]);
+  std::vector<std::complex<double>> sums(sigmas.size());
+  // Adds the column of a monopole at y, times weight(class), to unknowns' columns via `add`.
+  const auto accumulate = [&](const Eigen::Vector3d& y, const auto& add) {
+    const auto images = images_of(y);
     for (Eigen::Index i = 0; i < m; ++i) {
       const auto ui = static_cast<std::size_t>(i);
       const auto g = image_greens(k, fit.position_m[ui], fit.normal[ui], images);
-      const double w = std::sqrt(fit.weight_m2[ui]);
       for (std::size_t c = 0; c < sigmas.size(); ++c) {
         std::complex<double> sum = 0;
         for (int t = 0; t < 8; ++t) sum += parity_sign(t, sigmas[c]) * g[static_cast<std::size_t>(t)].normal_derivative;
-        a[c](i, j) = w * sum;
+        sums[c] = root_w[ui] * sum;
+      }
+      add(i);
+    }
+  };
+  if (layout.spread.empty()) {
+    for (Eigen::Index j = 0; j < n; ++j)
+      accumulate(layout.sources.position_m[static_cast<std::size_t>(j)], [&](Eigen::Index i) {
+        for (std::size_t c = 0; c < sigmas.size(); ++c) a[c](i, j) = sums[c];
+      });
+    return a;
+  }
+  for (const SpreadRow& row : layout.spread) {
+    const auto level = row_levels(k, row, fit);
+    for (std::size_t l = 0; l < row.levels.size(); ++l) {
+      std::vector<std::size_t> near;
+      for (std::size_t i = 0; i < fit.size(); ++i)
+        if (level[i] == l) near.push_back(i);
+      if (near.empty()) continue;
+      for (const SpreadPoint& p : row.levels[l]) {
+        const auto images = images_of(p.position_m);
+        for (const std::size_t ui : near) {
+          const auto g = image_greens(k, fit.position_m[ui], fit.normal[ui], images);
+          for (std::size_t c = 0; c < sigmas.size(); ++c) {
+            std::complex<double> sum = 0;
+            for (int t = 0; t < 8; ++t) sum += parity_sign(t, sigmas[c]) * g[static_cast<std::size_t>(t)].normal_derivative;
+            sum *= root_w[ui];
+            for (std::size_t tap = 0; tap < 2; ++tap)
+              if (p.unknown[tap] >= 0) a[c](static_cast<Eigen::Index>(ui), p.unknown[tap]) += p.weight_for(tap, sigmas[c]) * sum;
+          }
+        }
       }
     }
   }
@@ -140,16 +194,25 @@ SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredDa
   return out;
 }
 
-std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const SourceLayout& layout,
-                                     const SurfacePoints& points) {
-  const std::size_t m = points.size();
-  std::vector<ClassField> out;
-  for (const auto& pf : fit.classes)
-    out.push_back({pf.sigma, std::vector<std::complex<double>>(m), std::vector<std::complex<double>>(m)});
-  for (std::size_t j = 0; j < layout.sources.size(); ++j) {
-    const auto images = images_of(layout.sources.position_m[j]);
-    for (std::size_t i = 0; i < m; ++i) {
-      const auto g = image_greens(k_rad_m, points.position_m[i], points.normal[i], images);
+namespace {
+
+// Per fitted class, the strengths of a level's samples: their unknowns' shares summed.
+std::vector<std::complex<double>> sample_strengths(const std::vector<SpreadPoint>& samples, const ParityFit& pf) {
+  std::vector<std::complex<double>> out(samples.size(), 0.0);
+  for (std::size_t q = 0; q < samples.size(); ++q)
+    for (std::size_t t = 0; t < 2; ++t)
+      if (samples[q].unknown[t] >= 0) out[q] += samples[q].weight_for(t, pf.sigma) * pf.strengths(samples[q].unknown[t]);
+  return out;
+}
+
+// Adds to `out` the field of monopoles at `positions` (per class strengths) at the points `which`.
+void add_fields(double k, const std::vector<Eigen::Vector3d>& positions,
+                const std::vector<std::vector<std::complex<double>>>& strengths, const SurfacePoints& points,
+                const std::vector<std::size_t>& which, std::vector<ClassField>& out) {
+  for (std::size_t j = 0; j < positions.size(); ++j) {
+    const auto images = images_of(positions[j]);
+    for (const std::size_t i : which) {
+      const auto g = image_greens(k, points.position_m[i], points.normal[i], images);
       for (std::size_t c = 0; c < out.size(); ++c) {
         std::complex<double> p = 0, dp = 0;
         for (int t = 0; t < 8; ++t) {
@@ -157,11 +220,58 @@ std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const
           p += sign * g[static_cast<std::size_t>(t)].value;
           dp += sign * g[static_cast<std::size_t>(t)].normal_derivative;
         }
-        const std::complex<double> strength = fit.classes[c].strengths(static_cast<Eigen::Index>(j));
-        out[c].pressure[i] += strength * p;
-        out[c].normal_derivative[i] += strength * dp;
+        out[c].pressure[i] += strengths[c][j] * p;
+        out[c].normal_derivative[i] += strengths[c][j] * dp;
       }
     }
+  }
+}
+
+}  // namespace
+
+ClassMonopoles class_monopoles(const SourceFit& fit, const SourceLayout& layout) {
+  ClassMonopoles out;
+  if (layout.spread.empty()) {
+    out.position_m = layout.sources.position_m;
+    for (const auto& pf : fit.classes) out.strengths.push_back(pf.strengths);
+    return out;
+  }
+  for (const SpreadRow& row : layout.spread)
+    for (const SpreadPoint& p : row.levels.front()) out.position_m.push_back(p.position_m);
+  for (const auto& pf : fit.classes) {
+    Eigen::VectorXcd s(static_cast<Eigen::Index>(out.position_m.size()));
+    Eigen::Index at = 0;
+    for (const SpreadRow& row : layout.spread)
+      for (const auto& v : sample_strengths(row.levels.front(), pf)) s(at++) = v;
+    out.strengths.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const SourceLayout& layout,
+                                     const SurfacePoints& points) {
+  const std::size_t m = points.size();
+  std::vector<ClassField> out;
+  for (const auto& pf : fit.classes)
+    out.push_back({pf.sigma, std::vector<std::complex<double>>(m), std::vector<std::complex<double>>(m)});
+  if (layout.spread.empty()) {
+    std::vector<std::size_t> all(m);
+    for (std::size_t i = 0; i < m; ++i) all[i] = i;
+    std::vector<std::vector<std::complex<double>>> strengths;
+    for (const auto& pf : fit.classes) strengths.emplace_back(pf.strengths.data(), pf.strengths.data() + pf.strengths.size());
+    add_fields(k_rad_m, layout.sources.position_m, strengths, points, all, out);
+    return out;
+  }
+  // The field itself from the finest samples only: the residual and the far-field checks see the
+  // sources the expansion is built from, whatever the fill approximated.
+  for (const SpreadRow& row : layout.spread) {
+    std::vector<std::size_t> all(m);
+    for (std::size_t i = 0; i < m; ++i) all[i] = i;
+    std::vector<Eigen::Vector3d> positions;
+    for (const SpreadPoint& p : row.levels.front()) positions.push_back(p.position_m);
+    std::vector<std::vector<std::complex<double>>> strengths;
+    for (const auto& pf : fit.classes) strengths.push_back(sample_strengths(row.levels.front(), pf));
+    add_fields(k_rad_m, positions, strengths, points, all, out);
   }
   return out;
 }

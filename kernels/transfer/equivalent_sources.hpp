@@ -14,8 +14,35 @@
 
 namespace clatter::kernels::transfer {
 
+// A point of a spread source (below): its position and its share of up to two unknowns. Within
+// half a node spacing of the mirror plane `plane` (mirror bit 4: z = 0, bit 2: y = 0; 0: none) the
+// density is continued to its mirror image, so a class odd across that plane takes odd_weight
+// (falling to 0 on the plane) instead of weight (constant).
+struct SpreadPoint {
+  Eigen::Vector3d position_m;
+  std::array<int, 2> unknown{-1, -1};
+  std::array<double, 2> weight{0, 0}, odd_weight{0, 0};
+  int plane = 0;
+  double weight_for(std::size_t tap, int sigma) const { return (plane & sigma) ? odd_weight[tap] : weight[tap]; }
+};
+
+// One row of spread sources, sampled at levels of spacing: levels[0] within the row's depth (the
+// field's definition: the residual, the field and the expansion use it), each next one about 4x
+// coarser, down to one sample per node. A level spaced s integrates the row's smooth density to
+// ~e^(-2 pi D / s) at distance D, so a fit point at least kLevelDistance s from the row may use it
+// in the fill (e^(-4 pi) ~ 3.5e-6) if s is also within a tenth of the wavelength.
+struct SpreadRow {
+  std::vector<std::vector<SpreadPoint>> levels;
+  std::vector<double> spacing_m;  // largest gap between neighbouring samples, per level
+};
+inline constexpr double kLevelDistance = 2.0;
+
 struct SourceLayout {
-  SurfacePoints sources;  // first octant (ellipsoid_points.hpp inner_layer); positions only matter
+  SurfacePoints sources;  // first octant, one per unknown (inner_layer, or a spread source's node); positions only matter
+  // Empty: unknown j is a monopole at sources[j]. Else unknown j is a line density along its row,
+  // linear between neighbouring nodes (a hat), sampled closer together than the row's depth so
+  // that the line's field is smooth on the surface (docs/transfer.md).
+  std::vector<SpreadRow> spread;
 };
 
 // g on the fit grid: [mirror s][point i] of the octant grid's mirror images.
@@ -51,6 +78,14 @@ struct ClassField {
 };
 std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const SourceLayout& layout,
                                      const SurfacePoints& points);
+
+// Monopoles (octant positions, per fitted class the strength of each) equivalent to the fit: the
+// sources themselves, or the points of spread sources with their unknowns' shares summed.
+struct ClassMonopoles {
+  std::vector<Eigen::Vector3d> position_m;
+  std::vector<Eigen::VectorXcd> strengths;  // [fitted class][point]
+};
+ClassMonopoles class_monopoles(const SourceFit& fit, const SourceLayout& layout);
 
 // The whole field at the points of mirror s.
 void field_at_mirror(const std::vector<ClassField>& fields, int s, std::vector<std::complex<double>>& pressure,

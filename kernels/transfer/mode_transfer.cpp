@@ -45,6 +45,146 @@ Grids make_grids(const std::array<double, 3>& axes, double k, double data_spacin
   return g;
 }
 
+// The rim-graded layout (docs/transfer.md "Flat bodies"): sources on the confocal ellipsoid whose
+// thin semi-axis is t a, in the angles of rim_grid, equally spaced. A source's depth is its
+// distance to the surface point at the same angles. Rows (constant t, along the rim) lie within
+// `spacing_per_depth` times that depth of each other; along a row the unknowns are spaced by the
+// cap alone (the air wavelength, the data), and each is a line density (a hat between its
+// neighbours) sampled within spacing_per_depth times the depth, so that a row hugging the rim
+// is smooth on the surface without an unknown per rim radius.
+struct RimLayer {
+  std::array<double, 3> outer, inner;
+  double spacing_per_depth, cap_m;
+
+  static Eigen::Vector3d at(const std::array<double, 3>& e, double t, double p) {
+    return {e[0] * std::cos(t), e[1] * std::sin(t) * std::cos(p), e[2] * std::sin(t) * std::sin(p)};
+  }
+  double depth_spacing(double t, double p) const {
+    return std::min(cap_m, spacing_per_depth * (at(outer, t, p) - at(inner, t, p)).norm());
+  }
+  // Equally spaced points per angle (pi / 2) that keep neighbours along t (dir 0) or p (dir 1)
+  // within `spacing`.
+  double need(double t, double p, int dir, double spacing) const {
+    const double h = 1e-6;
+    const Eigen::Vector3d d = dir == 0 ? at(inner, t + h, p) - at(inner, t, p) : at(inner, t, p + h) - at(inner, t, p);
+    return d.norm() / h / spacing * std::numbers::pi / 2;
+  }
+  int rows(int minimum) const {
+    double most = 0;
+    for (int i = 0; i <= 192; ++i)
+      for (int j = 0; j <= 24; ++j) {
+        const double t = std::max(1e-3, i * std::numbers::pi / 384), p = j * std::numbers::pi / 48;
+        most = std::max(most, need(t, p, 0, depth_spacing(t, p)));
+      }
+    return std::max(minimum, static_cast<int>(std::ceil(most)));
+  }
+  // Points along the row at t: spaced within the depth rule (and the cap), or the cap alone.
+  int along(double t, bool by_depth, int minimum) const {
+    double most = 0;
+    for (int j = 0; j <= 48; ++j) {
+      const double p = j * std::numbers::pi / 96;
+      most = std::max(most, need(t, p, 1, by_depth ? depth_spacing(t, p) : cap_m));
+    }
+    return std::max(minimum, static_cast<int>(std::ceil(most)));
+  }
+};
+
+// The angles t of n rows as rim_grid places them.
+std::vector<double> row_angles(int n, bool midpoint) {
+  std::vector<double> t;
+  const SurfacePoints rows = rim_grid({1, 1, 1}, std::vector<int>(static_cast<std::size_t>(n), 1), midpoint);
+  for (const auto& x : rows.position_m) t.push_back(std::acos(std::clamp(x.x(), -1.0, 1.0)));
+  return t;
+}
+
+// The samples of one row of spread sources at t: `nodes` unknowns from `first` on (hats, equally
+// spaced in p), sampled at `per_node` points each.
+std::vector<SpreadPoint> spread_samples(const std::array<double, 3>& inner, double t, int first, int nodes, int per_node) {
+  const double quarter = std::numbers::pi / 2, node_step = quarter / nodes, step = node_step / per_node;
+  std::vector<SpreadPoint> out;
+  for (int q = 0; q < nodes * per_node; ++q) {
+    const double p = (q + 0.5) * step, f = p / node_step - 0.5;  // f: position in node units
+    SpreadPoint sp;
+    sp.position_m = RimLayer::at(inner, t, p);
+    if (f < 0) {  // below the first node: continued across z = 0
+      sp.unknown = {first, -1};
+      sp.weight = {1, 0};
+      sp.odd_weight = {p / (0.5 * node_step), 0};
+      sp.plane = 4;
+    } else if (f > nodes - 1) {  // beyond the last node: continued across y = 0
+      sp.unknown = {first + nodes - 1, -1};
+      sp.weight = {1, 0};
+      sp.odd_weight = {(quarter - p) / (0.5 * node_step), 0};
+      sp.plane = 2;
+    } else {
+      const int l = std::min(nodes - 2, static_cast<int>(f));
+      const double w = f - l;
+      sp.unknown = {first + l, nodes > 1 ? first + l + 1 : -1};
+      sp.weight = sp.odd_weight = {1 - w, w};
+    }
+    for (double& w : sp.weight) w /= per_node;
+    for (double& w : sp.odd_weight) w /= per_node;
+    out.push_back(sp);
+  }
+  return out;
+}
+
+// One row of spread sources: its unknowns' nodes and its sample levels (per_node, per_node / 4,
+// ... down to 1 per node).
+void add_spread_row(const std::array<double, 3>& inner, double t, int nodes, int per_node, SourceLayout& layout) {
+  const int first = static_cast<int>(layout.sources.size());
+  for (int l = 0; l < nodes; ++l) {
+    layout.sources.position_m.push_back(RimLayer::at(inner, t, (l + 0.5) * std::numbers::pi / 2 / nodes));
+    layout.sources.normal.emplace_back(0, 0, 0);
+    layout.sources.weight_m2.push_back(0);
+  }
+  SpreadRow row;
+  for (int per = per_node;; per = std::max(1, per / 4)) {
+    row.levels.push_back(spread_samples(inner, t, first, nodes, per));
+    const auto& samples = row.levels.back();
+    double gap = 0;
+    for (std::size_t q = 1; q < samples.size(); ++q) gap = std::max(gap, (samples[q].position_m - samples[q - 1].position_m).norm());
+    row.spacing_m.push_back(gap);
+    if (per == 1) break;
+  }
+  layout.spread.push_back(std::move(row));
+}
+
+Grids make_rim_grids(const std::array<double, 3>& axes, double k, double data_spacing_m, double inner_fraction,
+                     double spacing_per_depth, const TransferSettings& s) {
+  const double lambda = 2 * std::numbers::pi / k;
+  const RimLayer layer{axes, confocal_axes_m(axes, inner_fraction), spacing_per_depth,
+                       std::min(lambda / s.sources_per_wavelength, 2 * data_spacing_m)};
+  const int rows = layer.rows(s.minimum_per_angle), minimum_nodes = 2;
+  Grids g;
+  std::vector<double> nodes_at;  // t of each row, and its node count, for the fit grid
+  std::vector<int> nodes_in;
+  for (double t : row_angles(rows, true)) {
+    const int dense = layer.along(t, true, minimum_nodes), nodes = std::min(dense, layer.along(t, false, minimum_nodes));
+    add_spread_row(layer.inner, t, nodes, (dense + nodes - 1) / nodes, g.layout);
+    nodes_at.push_back(t);
+    nodes_in.push_back(nodes);
+  }
+  // Fit points: points_per_source times the unknowns per angle near their t, and two per node
+  // spacing of the data (whose C0 kinks would alias otherwise).
+  const auto lengths = rim_lengths_m(axes);
+  const auto along = [&](double t, int extra) {
+    const auto near = std::lower_bound(nodes_at.begin(), nodes_at.end(), t) - nodes_at.begin();
+    int n = nodes_in[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(near, 0, rows - 1))];
+    if (near > 0) n = std::max(n, nodes_in[static_cast<std::size_t>(near - 1)]);
+    return extra + std::max(static_cast<int>(std::ceil(s.points_per_source * n)),
+                            count(std::sin(t) * lengths[1], data_spacing_m / 2, 3));
+  };
+  const int fit_rows = std::max(static_cast<int>(std::ceil(s.points_per_source * rows)),
+                                count(lengths[0], data_spacing_m / 2, s.minimum_per_angle));
+  std::vector<int> fit, check;
+  for (double t : row_angles(fit_rows, false)) fit.push_back(along(t, 0));
+  for (double t : row_angles(fit_rows + 3, false)) check.push_back(along(t, 3));
+  g.fit = rim_grid(axes, fit);
+  g.check = rim_grid(axes, check);
+  return g;
+}
+
 // g = scale u.n at the 8 mirror images of the points; `motion2` gets the weighted sum of |u|^2.
 MirroredData neumann_data(const SurfacePoints& points, const SurfaceDisplacement& u, double scale, double* motion2) {
   MirroredData g;
@@ -76,17 +216,18 @@ double boundary_residual(double k, const SourceFit& fit, const Grids& grids, con
 }
 
 Multipole expansion_of(double k, const SourceFit& fit, const SourceLayout& layout, double tail_tolerance) {
+  const ClassMonopoles sources = class_monopoles(fit, layout);
   double rho = 0;
-  for (const auto& y : layout.sources.position_m) rho = std::max(rho, y.norm());
+  for (const auto& y : sources.position_m) rho = std::max(rho, y.norm());
   const int order = source_order(k, rho);
   Multipole m;
   m.k_rad_m = k;
   m.order = order;
   m.coefficients.assign(static_cast<std::size_t>(harmonic_count(order)), 0.0);
-  for (const auto& pf : fit.classes)
-    for (std::size_t j = 0; j < layout.sources.size(); ++j)
-      add_mirrored_monopole(k, order, layout.sources.position_m[j], pf.strengths(static_cast<Eigen::Index>(j)), pf.sigma,
-                            m.coefficients);
+  for (std::size_t c = 0; c < fit.classes.size(); ++c)
+    for (std::size_t j = 0; j < sources.position_m.size(); ++j)
+      add_mirrored_monopole(k, order, sources.position_m[j], sources.strengths[c](static_cast<Eigen::Index>(j)),
+                            fit.classes[c].sigma, m.coefficients);
   m.order = truncation_order(m.coefficients, order, tail_tolerance);
   m.coefficients.resize(static_cast<std::size_t>(harmonic_count(m.order)));
   return m;
@@ -111,9 +252,9 @@ ModeTransfer solve_mode_transfer(const std::array<double, 3>& axes_m, double ome
   best.boundary_residual = INFINITY;
   int attempt = 0;
   double previous = INFINITY;
-  for (double depth : settings.source_depths) {
+  // Returns the attempt's residual.
+  const auto try_grids = [&](const Grids& grids, double depth) {
     ++attempt;
-    const Grids grids = make_grids(axes_m, k, data_spacing_m, depth, settings);
     double motion2 = 0;
     const SourceFit fit = fit_sources(k, grids.fit, neumann_data(grids.fit, u, scale, &motion2), grids.layout,
                                       settings.class_threshold);
@@ -132,6 +273,18 @@ ModeTransfer solve_mode_transfer(const std::array<double, 3>& axes_m, double ome
       best.fit_points = 8 * static_cast<int>(grids.fit.size());
     }
     best.attempts = attempt;
+    return residual;
+  };
+  // A flat body's rim is sharper than any layer following the normal can resolve: the rim-graded
+  // layout is built for its depth from the start, and a deeper or shallower copy would not help.
+  if (axes_m[1] >= settings.rim_aspect * axes_m[0]) {
+    try_grids(make_rim_grids(axes_m, k, data_spacing_m, settings.rim_inner_fraction, settings.rim_spacing_per_depth,
+                             settings),
+              1 - settings.rim_inner_fraction);
+    return best;
+  }
+  for (double depth : settings.source_depths) {
+    const double residual = try_grids(make_grids(axes_m, k, data_spacing_m, depth, settings), depth);
     // Judged against the surface motion: a mode whose g is mostly mesh noise is not refitted.
     if (best.boundary_residual * best.normal_fraction <= settings.residual_target) break;
     // A layer depth that did not halve the residual says the floor is the data's (C0 kinks of

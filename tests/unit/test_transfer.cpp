@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 #include <numbers>
 
 #include "kernels/fem/ellipsoid_mesh.hpp"
@@ -114,39 +115,71 @@ TEST(TransferSphere, NoBlowUpAtInteriorResonances) {
 
 }  // namespace
 namespace {
-// Flat bodies: a rigid translation along the thin axis of a 1:4:4 and a 1:10:10 ellipsoid (the
-// default bank's flattest corner). Near the rim the exterior field varies over the rim's radius
-// a^2/b, which the source layer (never shallower than a/2 x its depth) does not follow, so the
-// boundary residual is large there (5 % and 44 %); the far field, an integral over the whole
-// surface, is checked against Kirchhoff-Helmholtz with the prescribed g: docs/transfer.md "Limits".
-TEST(TransferPancakeSlow, RigidTranslationFarFieldDespiteTheRimResidual) {
-  for (const auto& [ratio, kc] : std::vector<std::pair<double, double>>{{4.0, 10.0}, {10.0, 1.0}}) {
-    const double n = std::sqrt(1 + 2 * ratio * ratio);
-    const std::array<double, 3> axes{1 / n, ratio / n, ratio / n};
-    const auto m = fem::mesh_ellipsoid({axes, 2 * axes[0] / 3});
-    SurfaceMesh s;
-    for (Eigen::Index i = 0; i < m.mesh.nodes_m.cols(); ++i) s.nodes.push_back({m.mesh.nodes_m(0, i), m.mesh.nodes_m(1, i), m.mesh.nodes_m(2, i)});
-    for (const auto& f : m.boundary) s.faces.push_back({f[0], f[1], f[2], f[3], f[4], f[5]});
-    std::vector<double> shape(3 * s.nodes.size(), 0.0);
-    for (std::size_t i = 0; i < s.nodes.size(); ++i) shape[3 * i] = 1e-3;
-    const auto u = mesh_displacement(axes, s.nodes, s.faces, shape);
-    {
-      TransferSettings st;
-      const double omega = kc / axes[2] * st.sound_speed_m_s;
-      const auto t = solve_mode_transfer(axes, omega, surface_node_spacing_m(s.nodes, s.faces), u, st);
-      const auto grid = octant_grid(axes, 160, 160);
-      const auto g = [&](int s_mirror) {  // g of the translation: rho omega^2 u n_x
-        std::vector<double> out(grid.size());
-        for (std::size_t i = 0; i < grid.size(); ++i)
-          out[i] = st.air_density_kg_m3 * omega * omega * 1e-3 * mirror(grid.normal[i], s_mirror).x();
-        return out;
-      };
-      const double worst = clatter::reference::far_field_vs_kirchhoff_helmholtz(t.expansion, *t.solution, grid, g,
-                                                                               20 * axes[2]);
-      EXPECT_LT(worst, 0.03) << "1:" << ratio << ":" << ratio << " at k c = " << kc;
-      std::printf("1:%g:%g, k c %g: boundary residual %.3e, %d sources, far field vs Kirchhoff-Helmholtz %.2e\n", ratio,
-                  ratio, kc, t.boundary_residual, t.sources, worst);
+// Flat bodies through the rim-graded layout (docs/transfer.md "Flat bodies"): the data are a
+// made-up smooth bending mode, u = e_x J_m(k_b r) cos(m psi) (x the thin axis, r and psi polar in
+// the y-z plane), or a rigid translation along x, given exactly on the ellipsoid (no mesh, so the
+// residual is the layout's alone). References: the boundary residual itself (|dp/dn - g| / |g| on
+// points the fit never saw) and the Kirchhoff-Helmholtz integral of the solution's surface
+// pressure with the *prescribed* g at 10 points at r = 20 c.
+struct FlatCase {
+  double residual = 0, far_field = 0;
+  int sources = 0;
+};
+FlatCase flat_case(std::array<double, 3> axes, int m, double kb_c, double k_c) {
+  const double n = std::sqrt(axes[0] * axes[0] + axes[1] * axes[1] + axes[2] * axes[2]);
+  for (double& x : axes) x /= n;
+  const double kb = kb_c / axes[2];
+  const SurfaceDisplacement u = [&](const SurfacePoints& points, int s) {
+    std::vector<Eigen::Vector3d> out(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Eigen::Vector3d x = mirror(points.position_m[i], s);
+      const double r = std::hypot(x.y(), x.z()), psi = std::atan2(x.z(), x.y());
+      out[i] = {1e-3 * std::cyl_bessel_j(m, kb * r) * std::cos(m * psi), 0, 0};
     }
+    return out;
+  };
+  const TransferSettings st;
+  const double omega = k_c / axes[2] * st.sound_speed_m_s;
+  // The data's spacing: a coarse mesh's, half the thickness.
+  const auto t = solve_mode_transfer(axes, omega, axes[0] / 2, u, st);
+  const auto grid = rim_grid(axes, std::vector<int>(160, 160));
+  const auto g = [&](int s_mirror) {
+    const auto disp = u(grid, s_mirror);
+    std::vector<double> out(grid.size());
+    for (std::size_t i = 0; i < grid.size(); ++i)
+      out[i] = st.air_density_kg_m3 * omega * omega * disp[i].dot(mirror(grid.normal[i], s_mirror));
+    return out;
+  };
+  return {t.boundary_residual,
+          clatter::reference::far_field_vs_kirchhoff_helmholtz(t.expansion, *t.solution, grid, g, 20 * axes[2]),
+          t.sources};
+}
+
+// The fast representative: a shard like the default bank's entry 0004 (the 1:10:10 is in
+// TransferPancakeSlow below).
+TEST(TransferFlat, BendingModeOfAShardWithinTwoPercent) {
+  for (const auto& [axes, m, kb_c, k_c] : std::vector<std::tuple<std::array<double, 3>, int, double, double>>{
+           {{0.1, 0.316, 1}, 2, 8, 5}}) {
+    const FlatCase c = flat_case(axes, m, kb_c, k_c);
+    EXPECT_LT(c.residual, 0.02) << axes[0] << ":" << axes[1] << ":" << axes[2];
+    EXPECT_LT(c.far_field, 0.02) << axes[0] << ":" << axes[1] << ":" << axes[2];
+    std::printf("%g:%g:%g, m %d, k_b c %g, k c %g: boundary residual %.2e, far field vs Kirchhoff-Helmholtz %.2e, %d unknowns\n",
+                axes[0], axes[1], axes[2], m, kb_c, k_c, c.residual, c.far_field, c.sources);
+  }
+}
+
+// The rigid translation of a 1:4:4 and a 1:10:10 along the thin axis, whose rim residual was
+// 2.3 % and 44 % with the layer that follows the normal (docs/transfer.md "Limits" before the
+// rim layout), and the bending mode on the 1:10:10: slow (tens of seconds). The a/c = 0.03 corners are measured in docs/transfer.md,
+// not asserted here (minutes each, 3 %).
+TEST(TransferPancakeSlow, FlatBodiesWithinTwoPercent) {
+  for (const auto& [axes, m, kb_c, k_c] : std::vector<std::tuple<std::array<double, 3>, int, double, double>>{
+           {{1, 4, 4}, 0, 0, 10}, {{1, 10, 10}, 0, 0, 1}, {{1, 10, 10}, 2, 8, 5}}) {
+    const FlatCase c = flat_case(axes, m, kb_c, k_c);
+    EXPECT_LT(c.residual, 0.02) << axes[0] << ":" << axes[1] << ":" << axes[2];
+    EXPECT_LT(c.far_field, 0.02) << axes[0] << ":" << axes[1] << ":" << axes[2];
+    std::printf("%g:%g:%g, m %d, k_b c %g, k c %g: boundary residual %.2e, far field vs Kirchhoff-Helmholtz %.2e, %d unknowns\n",
+                axes[0], axes[1], axes[2], m, kb_c, k_c, c.residual, c.far_field, c.sources);
   }
 }
 }  // namespace
