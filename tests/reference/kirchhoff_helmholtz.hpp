@@ -12,7 +12,8 @@
 namespace clatter::reference {
 
 // The worst relative difference of |p| between `expansion` and the integral at 10 points of a
-// Fibonacci lattice at radius r_m. g(s): the prescribed g at the grid's points mirrored by s.
+// Fibonacci lattice at radius r_m (relative to |p|, or to 1 % of the lattice's largest |p| where
+// |p| is smaller: near a mode's nodal plane). g(s): the prescribed g at the grid's points mirrored by s.
 double far_field_vs_kirchhoff_helmholtz(const kernels::transfer::Multipole& expansion,
                                         const kernels::transfer::ExteriorSolution& solution,
                                         const kernels::transfer::SurfacePoints& grid,
