@@ -34,6 +34,25 @@ struct ModalSolveRecord {
   std::string solver_options;              // the PETSc/SLEPc options of the solve
 };
 
+// What an entry's band guarantees (docs/modal.md "The band and what it guarantees"). Conforming
+// FEM frequencies lie above the exact ones (Rayleigh-Ritz), by at most mesh_error (relative) up to
+// f_max on this mesh; so with every discrete mode up to keep_to_hz stored, every mode whose exact
+// frequency is at most f_max_hz is stored.
+struct ModalBand {
+  double f_max_hz = 0;    // f_max_multiple x f_1 (the entry's own f_1)
+  double mesh_error = 0;  // the margin: bound on the relative frequency error of the mesh at f_max
+  double keep_to_hz = 0;  // f_max (1 + mesh_error); the multiplet straddling it is kept whole
+};
+
+// The symmetry that decides an entry's multiplets (kernels/modal/multiplets.hpp) and how cleanly
+// the mode shapes showed it.
+struct ModalSymmetry {
+  std::string kind = "none";     // "sphere", "spheroid" or "none" (triaxial, or an object's mesh)
+  std::int32_t axis = -1;        // a spheroid's axis of revolution (0 x, 1 y, 2 z); -1 otherwise
+  double order_defect = 0;       // largest distance of a computed |m| or n from its integer
+  std::int32_t incomplete = 0;   // multiplets with fewer members than the symmetry demands
+};
+
 // Wall times and memory of an entry: provenance of one run, left out of the content hash.
 struct ModalEntryCost {
   double mesh_s = 0, assembly_s = 0, estimate_s = 0, solve_s = 0, total_s = 0;  // solve_s: basis rule included
@@ -74,7 +93,10 @@ struct ModalEntry {
   std::array<double, 3> axes_m{};          // semi-axes a <= b <= c, a^2 + b^2 + c^2 = 1
   std::vector<double> frequencies_hz;      // ascending, f_1 .. f_max
   std::vector<double> damping_ratios;      // the bank material's Rayleigh damping at each frequency
-  std::vector<std::int32_t> cluster;       // per mode: its multiplet (modes within the cluster gap), 0-based
+  std::vector<std::int32_t> cluster;       // per mode: its cluster (neighbours within the cluster gap), 0-based
+  std::vector<std::int32_t> multiplet;     // per mode: its multiplet, degenerate by symmetry, 0-based, numbered
+                                           // in the order of their lowest members
+  std::vector<std::int32_t> symmetry_order;  // per mode: |m| about a spheroid's axis, degree n on a sphere, -1
   std::vector<double> relative_residuals;  // ||K u - lambda M u|| / ||K u||
   // The curved surface: nodes and 6-node triangles (vertices counter-clockwise from outside,
   // then the mid-nodes of edges 01, 12, 20).
@@ -86,6 +108,8 @@ struct ModalEntry {
   ModalTransfer transfer;
   ModalMeshStats mesh;
   ModalSolveRecord solve;
+  ModalBand band;
+  ModalSymmetry symmetry;
   ModalEntryCost cost;
 
   std::size_t modes() const { return frequencies_hz.size(); }
@@ -117,7 +141,8 @@ struct TransferSettings {
 // nev_per_shift change the work, not the result, so they are not stored and read back as 0.
 struct ModalSolveSettings {
   double f_max_multiple = 4;             // f_max = f_max_multiple * f_1, per entry
-  double cluster_gap = 5e-3;             // relative frequency gap that separates multiplets
+  double cluster_gap = 5e-3;             // relative frequency gap that separates clusters (each holds whole
+                                         // multiplets: their mesh split is smaller)
   double degenerate_gap = 1e-8;          // Ritz values closer than this get the reference-field basis
                                          // (splits far below any mesh asymmetry)
   double tolerance = 1e-11;              // SLEPc's -eps_tol

@@ -42,7 +42,7 @@ const io::Schema& modal_schema() {
           {"patch.samples", default_samples(), "normalized semi-axes a <= b <= c, a^2 + b^2 + c^2 = 1 [m], one entry "
                                                "each (default: modal-samples output)", {0.0, 1.0, true}, {}, 3},
           {"modes.f_max_multiple", 4.0, "keep every mode up to f_max = this x f_1", {1.0, 64.0, true}},
-          {"modes.cluster_gap", 5e-3, "relative gap below which neighbouring frequencies form one multiplet",
+          {"modes.cluster_gap", 5e-3, "relative gap below which neighbouring frequencies form one cluster",
            {0.0, 0.1, true}},
           {"mesh.elements_per_wavelength", 3.0, "h = shear wavelength at f_max / this", {1.0, 20.0}},
           {"mesh.coarse_edge_m", 0.25, "h of the pre-solve that estimates f_1 (sets h and the interval) [m]",
