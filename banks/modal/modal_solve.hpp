@@ -26,11 +26,13 @@ struct MeshResolution {
 };
 
 // The constant C of the error model e(f) = C (h f / c_s)^4 of 10-node tetrahedra (eigenvalue error
-// O(h^4) for quadratic elements, hence the frequency's): the envelope over every mode of the bank's
-// glass sphere to 2 and 3 f_1 at the bank's mesh rule, against Lamb's exact frequencies, with a
-// safety factor (docs/modal.md "The band and what it guarantees"; tests/mpi/test_modal_entry.cpp
-// ModalEntrySlow.MeshErrorModelBoundsLamb measures it).
-inline constexpr double kMeshErrorConstant = 1.0;
+// O(h^4) for quadratic elements, hence the frequency's): the largest relative error up to f_max of
+// the bank's glass sphere against Lamb's exact frequencies, over (h f_max / c_s)^4, measured 0.91 -
+// 1.26 for f_max = 2 - 4 f_1 at 2.5 - 4 elements per wavelength, rising with f_max as the band's
+// top modes turn into surface (Rayleigh) waves, 0.91 c_s at nu = 0.2, whose (c_s / c_R)^4 = 1.47
+// bounds the rise near 1.4; 1.6 covers it (docs/modal.md "The band and what it guarantees";
+// tests/mpi/test_modal_entry.cpp ModalEntrySlow.MeshErrorModelBoundsLamb measures it).
+inline constexpr double kMeshErrorConstant = 1.6;
 
 // The bound on the relative frequency error (FEM above exact) at `frequency_hz` on `mesh`; 0 for h = 0.
 double mesh_frequency_error(const MeshResolution& mesh, double frequency_hz);
