@@ -7,7 +7,7 @@ from the file alone.
 Writes to OUTDIR:
   spectra.png   per entry one row of ticks at f_k / f_1 (the normalized spectrum, 1 ..
                 f_max_multiple and the end of the last multiplet), coloured by the multiplicity of
-                the mode's multiplet (`cluster`), rows labelled with the axis ratios (a/c, b/c)
+                the mode's multiplet (`multiplet`, by symmetry), rows labelled with the axis ratios (a/c, b/c)
   patch.png     the entries on the ellipsoid patch in (a/c, b/c), coloured by f_1 [Hz] at the
                 bank's normalized size (a^2 + b^2 + c^2 = 1 m^2), with the corners sphere (1, 1),
                 cigar (r, r) and pancake (r, 1) of r = min_ratio marked
@@ -37,16 +37,16 @@ def read_bank(path):
         entries = []
         for i in range(axes.shape[0]):
             e = f[f"entries/{i:04d}"]
-            entries.append(dict(axes=e["axes_m"][...], freq=e["frequencies_hz"][...], cluster=e["cluster"][...]))
+            entries.append(dict(axes=e["axes_m"][...], freq=e["frequencies_hz"][...], multiplet=e["multiplet"][...]))
         s, m, sw = f["settings"].attrs, f["material"].attrs, f["sweep"].attrs
         return dict(entries=entries, material=text(m["name"]), nu=float(m["poisson"]),
                     f_max_multiple=float(s["f_max_multiple"]), min_ratio=float(s["min_ratio"]),
                     n_failed=int(sw["n_failed"]), n_missing=int(sw["n_missing"]), tasks=int(sw["tasks_total"]))
 
 
-def multiplicities(cluster):
-    """Per mode: the size of its multiplet."""
-    _, inverse, counts = np.unique(cluster, return_inverse=True, return_counts=True)
+def multiplicities(multiplet):
+    """Per mode: the size of its multiplet (degenerate by symmetry, docs/modal.md)."""
+    _, inverse, counts = np.unique(multiplet, return_inverse=True, return_counts=True)
     return counts[inverse]
 
 
@@ -67,7 +67,7 @@ def spectra_figure(bank, out):
     seen = set()
     for row, e in enumerate(entries):
         ratio = e["freq"] / e["freq"][0]
-        mult = multiplicities(e["cluster"])
+        mult = multiplicities(e["multiplet"])
         for m in np.unique(mult):
             ax.vlines(ratio[mult == m], row - 0.38, row + 0.38, colors=[colour_of(m)], linewidth=1.4)
             seen.add(min(int(m), 10))

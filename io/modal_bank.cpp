@@ -70,7 +70,6 @@ void write_solve_record(File& f, const std::string& g, const model::ModalSolveRe
   write_attribute<std::int64_t>(f, g, "found_in_interval", s.found_in_interval);
   write_attribute<std::int64_t>(f, g, "shifts", s.shifts);
   write_attribute<double>(f, g, "first_mode_estimate_hz", s.first_mode_estimate_hz);
-  write_attribute<double>(f, g, "f_max_multiple", s.f_max_multiple);
   write_attribute(f, g, "solver_options", s.solver_options);
 }
 
@@ -83,9 +82,33 @@ model::ModalSolveRecord read_solve_record(const File& f, const std::string& g) {
   s.found_in_interval = read_attribute<std::int64_t>(f, g, "found_in_interval");
   s.shifts = read_attribute<std::int64_t>(f, g, "shifts");
   s.first_mode_estimate_hz = read_attribute<double>(f, g, "first_mode_estimate_hz");
-  s.f_max_multiple = read_attribute<double>(f, g, "f_max_multiple");
   s.solver_options = read_string_attribute(f, g, "solver_options");
   return s;
+}
+
+void write_band(File& f, const std::string& g, const model::ModalBand& b) {
+  create_group(f, g);
+  write_attribute<double>(f, g, "f_max_hz", b.f_max_hz);
+  write_attribute<double>(f, g, "mesh_error", b.mesh_error);
+  write_attribute<double>(f, g, "keep_to_hz", b.keep_to_hz);
+}
+
+model::ModalBand read_band(const File& f, const std::string& g) {
+  return {read_attribute<double>(f, g, "f_max_hz"), read_attribute<double>(f, g, "mesh_error"),
+          read_attribute<double>(f, g, "keep_to_hz")};
+}
+
+void write_symmetry(File& f, const std::string& g, const model::ModalSymmetry& s) {
+  create_group(f, g);
+  write_attribute(f, g, "kind", s.kind);
+  write_attribute<std::int32_t>(f, g, "axis", s.axis);
+  write_attribute<double>(f, g, "order_defect", s.order_defect);
+  write_attribute<std::int32_t>(f, g, "incomplete", s.incomplete);
+}
+
+model::ModalSymmetry read_symmetry(const File& f, const std::string& g) {
+  return {read_string_attribute(f, g, "kind"), read_attribute<std::int32_t>(f, g, "axis"),
+          read_attribute<double>(f, g, "order_defect"), read_attribute<std::int32_t>(f, g, "incomplete")};
 }
 
 void write_cost(File& f, const std::string& g, const model::ModalEntryCost& c) {
@@ -120,8 +143,8 @@ model::ModalEntryCost read_cost(const File& f, const std::string& g) {
 // The entry's arrays, without its cost (which a bank keeps in provenance).
 void write_entry_content(File& f, const std::string& g, const ModalEntry& e) {
   const std::size_t n = e.modes(), ns = e.surface_nodes_m.size();
-  if (e.damping_ratios.size() != n || e.cluster.size() != n || e.relative_residuals.size() != n ||
-      e.shapes.size() != n * ns * 3)
+  if (e.damping_ratios.size() != n || e.cluster.size() != n || e.multiplet.size() != n ||
+      e.symmetry_order.size() != n || e.relative_residuals.size() != n || e.shapes.size() != n * ns * 3)
     throw std::invalid_argument("modal entry: per-mode arrays of unequal length");
   create_group(f, g);
   write_attribute<std::uint32_t>(f, g, "sample", e.sample);
@@ -129,6 +152,8 @@ void write_entry_content(File& f, const std::string& g, const ModalEntry& e) {
   write_dataset<double>(f, g + "/frequencies_hz", e.frequencies_hz, {n}, "Hz", true);
   write_dataset<double>(f, g + "/damping_ratios", e.damping_ratios, {n}, "1", true);
   write_dataset<std::int32_t>(f, g + "/cluster", e.cluster, {n}, "1", true);
+  write_dataset<std::int32_t>(f, g + "/multiplet", e.multiplet, {n}, "1", true);
+  write_dataset<std::int32_t>(f, g + "/symmetry_order", e.symmetry_order, {n}, "1", true);
   write_dataset<double>(f, g + "/relative_residuals", e.relative_residuals, {n}, "1", true);
   write_dataset<double>(f, g + "/surface/nodes_m", flatten(e.surface_nodes_m), {ns, 3}, "m", true);
   write_dataset<std::int32_t>(f, g + "/surface/faces", flatten(e.surface_faces), {e.surface_faces.size(), 6}, "1", true);
@@ -136,12 +161,16 @@ void write_entry_content(File& f, const std::string& g, const ModalEntry& e) {
   write_transfer(f, g + "/transfer", e.transfer, n);
   write_mesh_stats(f, g + "/mesh", e.mesh);
   write_solve_record(f, g + "/solve", e.solve);
+  write_band(f, g + "/band", e.band);
+  write_symmetry(f, g + "/symmetry", e.symmetry);
 }
 
 // Everything a reader relies on: shapes agree, frequencies ascend, indices are in range.
 void check_entry(const File& f, const std::string& g, const ModalEntry& e) {
   auto bad = [&](const std::string& what) { return InputError(fmt::format("{}: {}: {}", f.path(), g, what)); };
   const std::size_t n = e.modes();
+  std::int32_t highest = -1;              // the multiplets numbered so far
+  std::vector<std::size_t> first_member;  // per multiplet
   for (std::size_t i = 0; i < n; ++i) {
     if (!(e.frequencies_hz[i] > 0) || !std::isfinite(e.frequencies_hz[i]))
       throw bad(fmt::format("frequencies_hz[{}] = {} is not a positive frequency", i, e.frequencies_hz[i]));
@@ -149,7 +178,16 @@ void check_entry(const File& f, const std::string& g, const ModalEntry& e) {
       throw bad(fmt::format("frequencies_hz[{}] = {} is below frequencies_hz[{}]: not ascending", i,
                             e.frequencies_hz[i], i - 1));
     if (e.cluster[i] != (i == 0 ? 0 : e.cluster[i - 1]) && e.cluster[i] != (i == 0 ? 0 : e.cluster[i - 1] + 1))
-      throw bad(fmt::format("cluster[{}] = {} does not number the multiplets in order", i, e.cluster[i]));
+      throw bad(fmt::format("cluster[{}] = {} does not number the clusters in order", i, e.cluster[i]));
+    if (e.multiplet[i] < 0 || e.multiplet[i] > highest + 1)
+      throw bad(fmt::format("multiplet[{}] = {} does not number the multiplets by their lowest members", i, e.multiplet[i]));
+    highest = std::max(highest, e.multiplet[i]);
+    if (e.symmetry_order[i] < -1) throw bad(fmt::format("symmetry_order[{}] = {} is below -1", i, e.symmetry_order[i]));
+    const auto first = static_cast<std::size_t>(e.multiplet[i]);
+    if (first == first_member.size()) first_member.push_back(i);
+    const std::size_t j = first_member[first];
+    if (e.cluster[j] != e.cluster[i] || e.symmetry_order[j] != e.symmetry_order[i])
+      throw bad(fmt::format("modes {} and {} share multiplet {} but not their cluster and order", j, i, e.multiplet[i]));
     if (!(e.relative_residuals[i] >= 0) || !(e.damping_ratios[i] >= 0))
       throw bad(fmt::format("mode {}: residual {} or damping {} is not a non-negative number", i,
                             e.relative_residuals[i], e.damping_ratios[i]));
@@ -160,6 +198,15 @@ void check_entry(const File& f, const std::string& g, const ModalEntry& e) {
       if (v < 0 || v >= ns) throw bad(fmt::format("surface/faces[{}] names node {} of {}", t, v, ns));
   for (double x : e.shapes)
     if (!std::isfinite(x)) throw bad("shapes holds a non-finite value");
+  const auto& b = e.band;
+  if (!(b.f_max_hz > 0) || !(b.mesh_error >= 0) || !(b.keep_to_hz >= b.f_max_hz) || !std::isfinite(b.keep_to_hz))
+    throw bad(fmt::format("band: f_max_hz {}, mesh_error {}, keep_to_hz {}: not a band", b.f_max_hz, b.mesh_error,
+                          b.keep_to_hz));
+  if (std::abs(b.keep_to_hz - b.f_max_hz * (1 + b.mesh_error)) > 1e-12 * b.keep_to_hz)
+    throw bad(fmt::format("band: keep_to_hz {} is not f_max_hz {} (1 + mesh_error {})", b.keep_to_hz, b.f_max_hz,
+                          b.mesh_error));
+  if (e.symmetry.kind != "sphere" && e.symmetry.kind != "spheroid" && e.symmetry.kind != "none")
+    throw bad(fmt::format("symmetry/kind '{}' is not sphere, spheroid or none", e.symmetry.kind));
 }
 
 // What the bank's settings promise of every entry: residuals within the limit, the count check
@@ -174,6 +221,10 @@ void check_against_settings(const File& f, const std::string& g, const ModalEntr
     throw InputError(fmt::format("{}: {}/solve: found_in_interval {}, below_lo {}, below_hi {} for {} modes: the "
                                  "count check does not hold", f.path(), g, e.solve.found_in_interval, e.solve.below_lo,
                                  e.solve.below_hi, e.modes()));
+  // The guarantee: the count-checked interval reaches past the band's keep_to, every mode below it stored.
+  if (e.solve.lambda_hi < std::pow(2 * M_PI * e.band.keep_to_hz, 2) * (1 - 1e-12))
+    throw InputError(fmt::format("{}: {}: the solved interval ends at {} Hz, below the band's keep_to_hz {}", f.path(), g,
+                                 std::sqrt(e.solve.lambda_hi) / (2 * M_PI), e.band.keep_to_hz));
 }
 
 }  // namespace
@@ -228,6 +279,8 @@ ModalEntry read_modal_entry(const File& f, const std::string& g) {
   const auto n = static_cast<long long>(e.frequencies_hz.size());
   e.damping_ratios = read_dataset<double>(f, g + "/damping_ratios", {n}, "1");
   e.cluster = read_dataset<std::int32_t>(f, g + "/cluster", {n}, "1");
+  e.multiplet = read_dataset<std::int32_t>(f, g + "/multiplet", {n}, "1");
+  e.symmetry_order = read_dataset<std::int32_t>(f, g + "/symmetry_order", {n}, "1");
   e.relative_residuals = read_dataset<double>(f, g + "/relative_residuals", {n}, "1");
   Dims dims;
   e.surface_nodes_m = unflatten<double, 3>(read_dataset<double>(f, g + "/surface/nodes_m", {-1, 3}, "m", &dims));
@@ -237,6 +290,8 @@ ModalEntry read_modal_entry(const File& f, const std::string& g) {
   e.transfer = read_transfer(f, g + "/transfer", e.frequencies_hz.size());
   e.mesh = read_mesh_stats(f, g + "/mesh");
   e.solve = read_solve_record(f, g + "/solve");
+  e.band = read_band(f, g + "/band");
+  e.symmetry = read_symmetry(f, g + "/symmetry");
   if (exists(f, g + "/cost")) e.cost = read_cost(f, g + "/cost");
   check_entry(f, g, e);
   return e;

@@ -2,7 +2,7 @@
 // The modal soundbank file (format "clatter-modal-bank", docs/bank-format.md "Modal bank"): the
 // material and settings, then one group per ellipsoid /entries/NNNN (4 digits, in sample order,
 // failed samples absent; attribute `sample` is the index in patch.samples) with its frequencies,
-// damping, multiplets, residuals, curved surface mesh, mass-normalized surface mode shapes, mesh
+// damping, clusters, multiplets by symmetry, residuals, band, curved surface mesh, mass-normalized surface mode shapes, mesh
 // quality and solver record. The data is model::ModalBank (model/modal_bank.hpp). A sweep's task
 // file holds one entry in the same layout under /result.
 #include <string>
@@ -13,7 +13,8 @@
 namespace clatter::io {
 
 inline constexpr const char* kModalBankFormat = "clatter-modal-bank";
-inline constexpr int kModalBankFormatVersion = 3;  // 2: acoustic transfer per mode; 3: a band per entry
+// 2: acoustic transfer per mode; 3: a band per entry, the band's guarantee, multiplets by symmetry
+inline constexpr int kModalBankFormatVersion = 3;
 
 // Writes atomically; every dataset shuffled, deflated and Fletcher-32 checksummed. Each entry's
 // wall times go under /provenance/run/entries (left out of the content hash).

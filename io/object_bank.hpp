@@ -13,7 +13,7 @@
 namespace clatter::io {
 
 inline constexpr const char* kObjectBankFormat = "clatter-object-bank";
-inline constexpr int kObjectBankFormatVersion = 2;  // 2: the entry's band multiple (solve/f_max_multiple)
+inline constexpr int kObjectBankFormatVersion = 2;  // 2: the modal entry's band and multiplets (modal bank version 3)
 
 // Writes atomically; every dataset shuffled, deflated and Fletcher-32 checksummed. Each entry's
 // wall times go under /provenance/run/entries (left out of the content hash).

@@ -33,7 +33,25 @@ struct ModalSolveRecord {
   std::int64_t shifts = 0;                 // shifts factorised
   double first_mode_estimate_hz = 0;       // f_1 from the coarse pre-solve that set h and the interval
   std::string solver_options;              // the PETSc/SLEPc options of the solve
-  double f_max_multiple = 0;               // k of this entry's band [f_1, k f_1] (ModalBand)
+};
+
+// What an entry's band guarantees (docs/modal.md "The band and what it guarantees"). Conforming
+// FEM frequencies lie above the exact ones (Rayleigh-Ritz), by at most mesh_error (relative) up to
+// f_max on this mesh; so with every discrete mode up to keep_to_hz stored, every mode whose exact
+// frequency is at most f_max_hz is stored.
+struct ModalBand {
+  double f_max_hz = 0;    // f_max_multiple x f_1 (the entry's own f_1)
+  double mesh_error = 0;  // the margin: bound on the relative frequency error of the mesh at f_max
+  double keep_to_hz = 0;  // f_max (1 + mesh_error); the multiplet straddling it is kept whole
+};
+
+// The symmetry that decides an entry's multiplets (kernels/modal/multiplets.hpp) and how cleanly
+// the mode shapes showed it.
+struct ModalSymmetry {
+  std::string kind = "none";     // "sphere", "spheroid" or "none" (triaxial, or an object's mesh)
+  std::int32_t axis = -1;        // a spheroid's axis of revolution (0 x, 1 y, 2 z); -1 otherwise
+  double order_defect = 0;       // largest distance of a computed |m| or n from its integer
+  std::int32_t incomplete = 0;   // multiplets with fewer members than the symmetry demands
 };
 
 // Wall times and memory of an entry: provenance of one run, left out of the content hash.
@@ -76,7 +94,10 @@ struct ModalEntry {
   std::array<double, 3> axes_m{};          // semi-axes a <= b <= c, a^2 + b^2 + c^2 = 1
   std::vector<double> frequencies_hz;      // ascending, f_1 .. f_max
   std::vector<double> damping_ratios;      // the bank material's Rayleigh damping at each frequency
-  std::vector<std::int32_t> cluster;       // per mode: its multiplet (modes within the cluster gap), 0-based
+  std::vector<std::int32_t> cluster;       // per mode: its cluster (neighbours within the cluster gap), 0-based
+  std::vector<std::int32_t> multiplet;     // per mode: its multiplet, degenerate by symmetry, 0-based, numbered
+                                           // in the order of their lowest members
+  std::vector<std::int32_t> symmetry_order;  // per mode: |m| about a spheroid's axis, degree n on a sphere, -1
   std::vector<double> relative_residuals;  // ||K u - lambda M u|| / ||K u||
   // The curved surface: nodes and 6-node triangles (vertices counter-clockwise from outside,
   // then the mid-nodes of edges 01, 12, 20).
@@ -88,6 +109,8 @@ struct ModalEntry {
   ModalTransfer transfer;
   ModalMeshStats mesh;
   ModalSolveRecord solve;
+  ModalBand band;
+  ModalSymmetry symmetry;
   ModalEntryCost cost;
 
   std::size_t modes() const { return frequencies_hz.size(); }
@@ -124,8 +147,9 @@ struct TransferSettings {
 // that estimates f_1 with it. The bank file holds the first five (/settings); max_iterations and
 // nev_per_shift change the work, not the result, so they are not stored and read back as 0.
 struct ModalSolveSettings {
-  double f_max_multiple = 4;             // f_max = f_max_multiple * f_1 (a bank: the smallest; ModalBand)
-  double cluster_gap = 5e-3;             // relative frequency gap that separates multiplets
+  double f_max_multiple = 4;             // f_max = f_max_multiple * f_1 (a bank: the smallest; BandRule)
+  double cluster_gap = 5e-3;             // relative frequency gap that separates clusters (each holds whole
+                                         // multiplets: their mesh split is smaller)
   double degenerate_gap = 1e-8;          // Ritz values closer than this get the reference-field basis
                                          // (splits far below any mesh asymmetry)
   double tolerance = 1e-11;              // SLEPc's -eps_tol
@@ -134,19 +158,19 @@ struct ModalSolveSettings {
   std::int64_t nev_per_shift = 0;        // eigenpairs sought around each shift; 0: SLEPc's default
 };
 
-// The band of each entry (docs/modal.md "Every audible mode"): [f_1, k f_1] with
+// How each entry's band is chosen (docs/modal.md "Every audible mode"): [f_1, k f_1] with
 //   k = top_hz * largest_piece_m / (2 c f_1),  clamped to [solve.f_max_multiple, max_multiple],
 // c the entry's normalized longest semi-axis: equi-frequency scaling gives a piece of the entry's
 // shape and longest dimension L the base frequency f_0 = f_1 2c / L, so every piece up to
 // largest_piece_m gets every mode up to top_hz. largest_piece_m = 0: k = solve.f_max_multiple.
-struct ModalBand {
+struct BandRule {
   double top_hz = 20000;          // the top of the audible band
   double largest_piece_m = 0;     // the longest piece (2c) that gets every mode to top_hz
   double max_multiple = 64;       // the cost's limit on k
 };
 
 // k of an entry whose normalized longest semi-axis is c_m and first frequency f1_hz.
-inline double band_multiple(const ModalBand& band, double min_multiple, double c_m, double f1_hz) {
+inline double band_multiple(const BandRule& band, double min_multiple, double c_m, double f1_hz) {
   const double wanted = band.top_hz * band.largest_piece_m / (2 * c_m * f1_hz);
   return std::max(min_multiple, std::min(band.max_multiple, wanted));
 }
@@ -155,7 +179,7 @@ inline double band_multiple(const ModalBand& band, double min_multiple, double c
 struct ModalBankHeader {
   Material material;
   ModalSolveSettings solve;              // solve.f_max_multiple: the smallest k of any entry
-  ModalBand band;
+  BandRule band;
   double elements_per_wavelength = 0;  // h = shear wavelength at f_max / this
   double min_ratio = 0;                // smallest a/c of the sampled patch
   double coarse_edge_m = 0;            // h of the pre-solve that estimates f_1

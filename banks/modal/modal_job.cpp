@@ -41,6 +41,20 @@ kernels::fem::EllipsoidMesh mesh_or_fail(const ModalSpec& spec, const std::array
   }
 }
 
+// The multiplets by symmetry from the surface shapes (kernels/modal/multiplets.hpp).
+void store_multiplets(const kernels::modal::EllipsoidSymmetry& symmetry, model::ModalEntry& entry) {
+  const auto m = kernels::modal::find_multiplets(entry.surface_nodes_m, entry.surface_faces, entry.shapes, entry.cluster,
+                                                 symmetry);
+  entry.multiplet = m.multiplet;
+  entry.symmetry_order = m.order;
+  using kernels::modal::SymmetryKind;
+  entry.symmetry = {symmetry.kind == SymmetryKind::sphere ? "sphere" : symmetry.kind == SymmetryKind::spheroid ? "spheroid" : "none",
+                    symmetry.axis, m.order_defect, m.incomplete};
+  if (m.incomplete > 0 || m.order_defect > 0.25)
+    spdlog::warn("modal: {} multiplet(s) incomplete, orders within {:.2f} of integers: a cluster is not a whole "
+                 "symmetric subspace", m.incomplete, m.order_defect);
+}
+
 }  // namespace
 
 model::ModalMeshStats mesh_stats(const kernels::fem::MeshQuality& q) {
@@ -50,7 +64,7 @@ model::ModalMeshStats mesh_stats(const kernels::fem::MeshQuality& q) {
 
 void store_modes(MPI_Comm group, const ModeSet& modes, const kernels::fem::Tet10Mesh& mesh,
                  const std::vector<kernels::fem::BoundaryFace>& boundary, const model::Material& material,
-                 model::ModalEntry& entry) {
+                 const kernels::modal::EllipsoidSymmetry& symmetry, model::ModalEntry& entry) {
   Stage stage("surface");
   // The surface nodes (in ascending mesh order) and the faces renumbered onto them.
   std::map<int, std::int32_t> index;
@@ -80,6 +94,8 @@ void store_modes(MPI_Comm group, const ModeSet& modes, const kernels::fem::Tet10
     entry.cluster.push_back(modes.cluster[i]);
     entry.relative_residuals.push_back(modes.relative_residuals[i]);
   }
+  entry.band = modes.band;
+  if (root) store_multiplets(symmetry, entry);
 }
 
 kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m) {
@@ -131,7 +147,8 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
   model::ModalSolveSettings settings = spec.header.solve;
   settings.f_max_multiple = entry_band_multiple(spec, axes, f1_estimate_hz);
   auto t0 = clock_type::now();
-  const auto mesh = mesh_or_fail(spec, axes, modal_edge_length_m(spec, settings.f_max_multiple * f1_estimate_hz));
+  const double h_m = modal_edge_length_m(spec, settings.f_max_multiple * f1_estimate_hz);
+  const auto mesh = mesh_or_fail(spec, axes, h_m);
   entry.cost.mesh_s = since(t0);
   t0 = clock_type::now();
   std::optional<FemModel> model;
@@ -145,7 +162,7 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
   {
     Stage stage("eigensolve");
     t0 = clock_type::now();
-    modes = solve_modes(*model, reference, lambda1_estimate, settings);
+    modes = solve_modes(*model, reference, lambda1_estimate, settings, {h_m, material.shear_speed_m_s()});
     entry.cost.solve_s = since(t0);
   }
   entry.cost.factor_memory_mb = static_cast<double>(modes.stats.check_factor.memory_max_mb);
@@ -155,8 +172,7 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
   entry.mesh = mesh_stats(mesh.quality);
   entry.solve = modes.record;
   entry.solve.first_mode_estimate_hz = f1_estimate_hz;
-  entry.solve.f_max_multiple = settings.f_max_multiple;
-  store_modes(group, modes, mesh.mesh, mesh.boundary, material, entry);
+  store_modes(group, modes, mesh.mesh, mesh.boundary, material, kernels::modal::ellipsoid_symmetry(axes), entry);
   const auto& transfer = spec.header.transfer;
   compute_modal_transfer(group, [&transfer](const model::ModalEntry& e, std::size_t mode) { return mode_transfer(e, mode, transfer); },
                          entry);

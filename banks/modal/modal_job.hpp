@@ -12,6 +12,7 @@
 #include "banks/modal/modal_fem.hpp"
 #include "banks/modal/modal_solve.hpp"
 #include "banks/modal/modal_spec.hpp"
+#include "kernels/modal/multiplets.hpp"
 #include "sweep/sweep.hpp"
 #include "model/modal_bank.hpp"
 
@@ -54,11 +55,12 @@ FirstModeEstimate estimate_first_mode(MPI_Comm comm, const ModalSpec& spec, cons
 // What the modal and object kinds share after the solve.
 model::ModalMeshStats mesh_stats(const kernels::fem::MeshQuality& quality);
 // On the group's rank 0, into `entry`: the surface nodes of `boundary` (in ascending mesh order)
-// and its faces renumbered onto them, every mode's frequency, damping in `material`, multiplet and
-// residual, and its shape at the surface nodes. Collective on `group` (the vectors are gathered).
+// and its faces renumbered onto them, every mode's frequency, damping in `material`, cluster and
+// residual, and its shape at the surface nodes; the band; the multiplets that `symmetry` makes of
+// the clusters (kernels/modal/multiplets.hpp). Collective on `group` (the vectors are gathered).
 void store_modes(MPI_Comm group, const ModeSet& modes, const kernels::fem::Tet10Mesh& mesh,
                  const std::vector<kernels::fem::BoundaryFace>& boundary, const model::Material& material,
-                 model::ModalEntry& entry);
+                 const kernels::modal::EllipsoidSymmetry& symmetry, model::ModalEntry& entry);
 
 // The band multiple k of an entry (model::ModalBand): from its normalized axes and the pre-solve's f_1.
 double entry_band_multiple(const ModalSpec& spec, const std::array<double, 3>& axes, double f1_hz);

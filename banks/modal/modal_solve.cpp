@@ -40,7 +40,8 @@ petsc::EigenSolution solve_or_fail(const FemModel& m, const petsc::SliceSettings
   }
 }
 
-// The number of kept modes: those up to `keep_to`, then the rest of the multiplet at the edge.
+// The number of kept modes: those up to `keep_to`, then the rest of the cluster at the edge, which
+// holds the whole multiplet (kernels/modal/multiplets.hpp checks it afterwards).
 std::size_t kept_count(const std::vector<double>& lambdas, double keep_to, double gap) {
   std::size_t n = 0;
   while (n < lambdas.size() && lambdas[n] <= keep_to) ++n;
@@ -112,10 +113,17 @@ double first_elastic_lambda(const FemModel& m, double guess, const model::ModalS
   return solution.lambdas.front();
 }
 
+double mesh_frequency_error(const MeshResolution& mesh, double frequency_hz) {
+  if (!(mesh.edge_length_m > 0)) return 0;
+  return kMeshErrorConstant * std::pow(mesh.edge_length_m * frequency_hz / mesh.shear_speed_m_s, 4);
+}
+
 ModeSet solve_modes(const FemModel& m, const std::vector<petsc::Vector>& reference, double lambda1_estimate,
-                    const model::ModalSolveSettings& s) {
-  const double k2 = s.f_max_multiple * s.f_max_multiple;
-  double lo = 0.25 * lambda1_estimate, hi = 1.1 * k2 * lambda1_estimate;
+                    const model::ModalSolveSettings& s, const MeshResolution& mesh) {
+  const double k = s.f_max_multiple;
+  auto hz = [](double lambda) { return std::sqrt(lambda) / (2 * M_PI); };
+  const double reach = k * (1 + mesh_frequency_error(mesh, k * hz(lambda1_estimate)));
+  double lo = 0.25 * lambda1_estimate, hi = 1.1 * reach * reach * lambda1_estimate;
   for (int attempt = 0;; ++attempt) {
     mpi::poll_interrupt(m.layout.comm(), "the eigen-solve");
     petsc::EigenSolution solution = solve_or_fail(m, slice(s, lo, hi));
@@ -123,7 +131,13 @@ ModeSet solve_modes(const FemModel& m, const std::vector<petsc::Vector>& referen
       throw TaskFailure(fmt::format("{} eigenvalues below {:.6g} (rad/s)^2, a quarter of the first mode's estimate: "
                                     "expected the 6 rigid motions", solution.below_lo, lo));
     if (solution.lambdas.empty()) throw TaskFailure(fmt::format("no mode in [{:.6g}, {:.6g}] (rad/s)^2", lo, hi));
-    const double keep_to = k2 * solution.lambdas.front();
+    // FEM frequencies lie above the exact ones by at most the margin up to f_max: a mode whose
+    // exact frequency is at most f_max has a discrete one at most f_max (1 + margin).
+    model::ModalBand band;
+    band.f_max_hz = k * hz(solution.lambdas.front());
+    band.mesh_error = mesh_frequency_error(mesh, band.f_max_hz);
+    band.keep_to_hz = band.f_max_hz * (1 + band.mesh_error);
+    const double keep_to = std::pow(2 * M_PI * band.keep_to_hz, 2);
     const std::size_t kept = kept_count(solution.lambdas, keep_to, s.cluster_gap);
     const double needed = keep_to * (1 + s.cluster_gap) * (1 + s.cluster_gap);
     if (kept == solution.lambdas.size() && needed > hi && attempt < 2) {  // f_1 was overestimated: widen
@@ -139,6 +153,7 @@ ModeSet solve_modes(const FemModel& m, const std::vector<petsc::Vector>& referen
     set.relative_residuals.assign(kept, 0);
     set.cluster.assign(kept, 0);
     set.stats = solution.stats;
+    set.band = band;
     set.record = {lo, hi, solution.below_lo, solution.below_hi,
                   static_cast<std::int64_t>(solution.lambdas.size()), solution.stats.shifts, 0, solution.options};
     apply_basis_rule(m, reference, s, set);

@@ -49,7 +49,7 @@ const io::Schema& modal_schema() {
            {0.0, 100.0}},
           {"modes.max_multiple", 64.0, "the largest band multiple an entry may need (its cost's limit)",
            {1.0, 1000.0, true}},
-          {"modes.cluster_gap", 5e-3, "relative gap below which neighbouring frequencies form one multiplet",
+          {"modes.cluster_gap", 5e-3, "relative gap below which neighbouring frequencies form one cluster",
            {0.0, 0.1, true}},
           {"mesh.elements_per_wavelength", 3.0, "h = shear wavelength at f_max / this", {1.0, 20.0}},
           {"mesh.coarse_edge_m", 0.25, "h of the pre-solve that estimates f_1 (sets h and the interval) [m]",

@@ -14,33 +14,45 @@
 
 namespace clatter::jobs {
 
-std::string multiplicities(const model::ModalEntry& e) {
+std::string group_sizes(std::span<const std::int32_t> group_of_mode) {
+  std::map<std::int32_t, int> size_of_group;
+  for (std::int32_t g : group_of_mode) ++size_of_group[g];
   std::map<int, int> count_of_size;
-  for (std::size_t i = 0; i < e.modes();) {
-    std::size_t j = i;
-    while (j < e.modes() && e.cluster[j] == e.cluster[i]) ++j;
-    ++count_of_size[static_cast<int>(j - i)];
-    i = j;
-  }
+  for (const auto& [group, size] : size_of_group) ++count_of_size[size];
   std::string out;
   for (const auto& [size, count] : count_of_size) out += fmt::format("{}{}x{}", out.empty() ? "" : ", ", size, count);
   return out;
 }
 
+std::string band_guarantee(const model::ModalEntry& e, const std::string& f_max_name) {
+  const auto& b = e.band;
+  return fmt::format("complete for every mode with exact frequency <= {}{:.2f} Hz given the mesh error <= {:.2e} "
+                     "at f_max (every discrete mode to {:.2f} Hz stored, with the rest of its cluster)",
+                     f_max_name, b.f_max_hz, b.mesh_error, b.keep_to_hz);
+}
+
+std::string symmetry_text(const model::ModalSymmetry& s) {
+  if (s.kind == "spheroid") return fmt::format("spheroid about {}: doublets |m| >= 1, singles m = 0", "xyz"[s.axis]);
+  if (s.kind == "sphere") return "sphere: 2n + 1 of degree n";
+  return "none: every mode single";
+}
+
 std::string entry_table(const model::ModalEntry& e, std::size_t index) {
-  return fmt::format("entry {}: axes ({:.6f}, {:.6f}, {:.6f}) m, {} modes\n", index, e.axes_m[0], e.axes_m[1], e.axes_m[2],
-                     e.modes()) +
+  return fmt::format("entry {}: axes ({:.6f}, {:.6f}, {:.6f}) m, {} modes; multiplets by symmetry: {}\n", index,
+                     e.axes_m[0], e.axes_m[1], e.axes_m[2], e.modes(), symmetry_text(e.symmetry)) +
          modes_csv(e);
 }
 
 std::string modes_csv(const model::ModalEntry& e) {
-  std::string out = "mode,frequency_hz,damping_ratio,multiplet,multiplicity,relative_residual,transfer_order,"
-         "boundary_residual,normal_attempts,sources\n";
+  std::string out = "mode,frequency_hz,damping_ratio,cluster,cluster_size,multiplet,multiplet_size,symmetry_order,"
+                    "relative_residual,transfer_order,boundary_residual,normal_attempts,sources\n";
   const auto& t = e.transfer;
   for (std::size_t i = 0; i < e.modes(); ++i) {
-    const auto size = std::count(e.cluster.begin(), e.cluster.end(), e.cluster[i]);
-    out += fmt::format("{},{:.9g},{:.4g},{},{},{:.2e},{},{:.2e},{},{}\n", i, e.frequencies_hz[i], e.damping_ratios[i],
-                       e.cluster[i], size, e.relative_residuals[i], t.order[i], t.boundary_residual[i], t.attempts[i],
+    const auto cluster_size = std::count(e.cluster.begin(), e.cluster.end(), e.cluster[i]);
+    const auto multiplet_size = std::count(e.multiplet.begin(), e.multiplet.end(), e.multiplet[i]);
+    out += fmt::format("{},{:.9g},{:.4g},{},{},{},{},{},{:.2e},{},{:.2e},{},{}\n", i, e.frequencies_hz[i],
+                       e.damping_ratios[i], e.cluster[i], cluster_size, e.multiplet[i], multiplet_size,
+                       e.symmetry_order[i], e.relative_residuals[i], t.order[i], t.boundary_residual[i], t.attempts[i],
                        t.sources[i]);
   }
   return out;
@@ -82,8 +94,8 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
   out += fmt::format("  material:   {}: rho = {} kg/m^3, E = {:.4g} Pa, nu = {}, c_s = {:.1f} m/s; Rayleigh alpha = {} "
                      "1/s, beta = {} s\n", m.name, m.rho_kg_m3, m.youngs_pa, m.poisson, m.shear_speed_m_s(),
                      m.damping.value_or(model::RayleighDamping{}).alpha_1_s, m.damping.value_or(model::RayleighDamping{}).beta_s);
-  out += fmt::format("  settings:   {}; h = shear wavelength at f_max / {}; min a/c {}; multiplets "
-                     "split by < {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", band_text(h),
+  out += fmt::format("  settings:   {}, and on by the mesh's error margin; h = shear wavelength at f_max / {}; "
+                     "min a/c {}; clusters split by > {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", band_text(h),
                      h.elements_per_wavelength, h.min_ratio, h.solve.cluster_gap, h.solve.tolerance,
                      h.solve.residual_limit, h.ranks_per_task);
   const auto& tr = h.transfer;
@@ -94,7 +106,8 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
                      "every mode to {:g} Hz by equi-frequency scaling (f_0 = f_1 2c / L, complete while k f_0 >= {:g} Hz)\n",
                      m.name, h.band.top_hz, h.band.top_hz);
   out += "  entry  a        b        c        k      L_all [m]  modes  f_1 [Hz]   last [Hz]   dofs     max res   min dihedral  time [s]  "
-         "transfer: max order, max boundary res (normal fraction > 0.3), s  multiplicities (size x count)\n";
+         "transfer: max order, max boundary res (normal fraction > 0.3), s  "
+         + fmt::format("clusters (frequencies within {:g} %; size x count)\n", 100 * h.solve.cluster_gap);
   for (std::size_t i = 0; i < bank.entries.size(); ++i) {
     const auto& e = bank.entries[i];
     const double worst = e.modes() ? *std::max_element(e.relative_residuals.begin(), e.relative_residuals.end()) : 0;
@@ -105,13 +118,20 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
       if (t.normal_fraction[k] > 0.3) boundary = std::max(boundary, t.boundary_residual[k]);
     // Equi-frequency scaling: a piece of this shape and longest dimension L has f_0 = f_1 2c / L,
     // so it gets every mode to the top while k f_0 >= top, L <= 2 c k f_1 / top.
-    const double k = e.solve.f_max_multiple, f1 = e.modes() ? e.frequencies_hz.front() : 0.0;
+    const double f1 = e.modes() ? e.frequencies_hz.front() : 0.0, k = f1 > 0 ? e.band.f_max_hz / f1 : 0.0;
     const double complete_m = 2 * e.axes_m[2] * k * f1 / h.band.top_hz;
     out += fmt::format("  {:<5}  {:.5f}  {:.5f}  {:.5f}  {:<5.2f}  {:<9.3f}  {:<5}  {:<9.2f}  {:<10.2f}  {:<7}  {:.1e}   {:<12.1f}  {:<8.1f}  "
                        "{:<3} {:.1e} {:<7.1f}                                        {}\n", i, e.axes_m[0], e.axes_m[1], e.axes_m[2], k, complete_m,
                        e.modes(), f1, e.modes() ? e.frequencies_hz.back() : 0.0,
                        e.mesh.dofs, worst, e.mesh.min_dihedral_deg, e.cost.total_s, order, boundary, e.cost.transfer_s,
-                       multiplicities(e));
+                       group_sizes(e.cluster));
+    out += fmt::format("         multiplets (degenerate by symmetry; size x count): {} [{}; |order - integer| <= {:.2f}, "
+                       "{} incomplete]\n", group_sizes(e.multiplet), symmetry_text(e.symmetry), e.symmetry.order_defect,
+                       e.symmetry.incomplete);
+    out += "         band: " + band_guarantee(e, fmt::format("{:.3g} f_1 = ", k)) +
+           fmt::format("; a piece scaled by equi-frequency scaling gets every mode to {:.3g} f_0: complete to {:g} Hz for "
+                       "pieces of this shape with f_0 >= {:.0f} Hz, up to {:.3f} m long in {}\n", k, h.band.top_hz,
+                       k > 0 ? h.band.top_hz / k : 0.0, complete_m, m.name);
   }
   const auto& sw = bank.sweep;
   out += fmt::format("  sweep:      {} of {} entries in the bank, {} failed, {} missing\n", sw.tasks_done(),

@@ -123,7 +123,8 @@ model::ObjectEntry build_object_entry(MPI_Comm group, const ObjectSpec& spec, st
     model::ModalSolveSettings settings = spec.header.solve;
     // The band is absolute; an object whose first mode lies above f_max keeps its first multiplet.
     settings.f_max_multiple = std::max(1.0, spec.header.f_max_hz / f1_hz);
-    modes = solve_modes(*model, reference, lambda1, settings);
+    // The band's margin from the shear-wavelength edge h_m (the thickness cap only refines).
+    modes = solve_modes(*model, reference, lambda1, settings, {h_m, material.shear_speed_m_s()});
     entry.cost.solve_s = since(t0);
   }
   entry.cost.factor_memory_mb = static_cast<double>(modes.stats.check_factor.memory_max_mb);
@@ -131,9 +132,8 @@ model::ObjectEntry build_object_entry(MPI_Comm group, const ObjectSpec& spec, st
   entry.mesh = mesh_stats(mesh.quality);
   entry.solve = modes.record;
   entry.solve.first_mode_estimate_hz = f1_hz;
-  entry.solve.f_max_multiple = std::max(1.0, spec.header.f_max_hz / f1_hz);  // as the solve's settings had it
   model.reset();
-  store_modes(group, modes, mesh.mesh, mesh.boundary, material, entry);
+  store_modes(group, modes, mesh.mesh, mesh.boundary, material, {}, entry);  // an arbitrary mesh: no symmetry
   for (const auto& x : entry.surface_nodes_m) e.radius_m = std::max(e.radius_m, std::hypot(x[0], x[1], x[2]));
   const auto& transfer = spec.header.transfer;
   if (with_transfer)

@@ -43,7 +43,7 @@ const io::Schema& object_schema() {
           {"material.table", std::string(""), "materials file (TOML, docs/materials.md); empty: the built-in "
                                               "configs/materials.toml"},
           {"modes.f_max_hz", 20000.0, "keep every mode from f_1 up to this [Hz]", {0.0, 1e6, true}},
-          {"modes.cluster_gap", 5e-3, "relative gap below which neighbouring frequencies form one multiplet",
+          {"modes.cluster_gap", 5e-3, "relative gap below which neighbouring frequencies form one cluster",
            {0.0, 0.1, true}},
           {"mesh.elements_per_wavelength", 3.0, "h = shear wavelength at f_max / this", {1.0, 20.0}},
           {"mesh.elements_through_thickness", std::int64_t{1}, "and h at most the thinnest part / this (1: 10-node "

@@ -32,7 +32,7 @@ std::string object_bank_info(const std::string& path, std::optional<std::size_t>
   std::string out = fmt::format("{}: object bank (format {} v{}), {} objects, {:.3f} MB on disk\n", path,
                                 io::kObjectBankFormat, io::kObjectBankFormatVersion, bank.entries.size(), file_mb);
   out += fmt::format("  settings:   modes f_1 .. {} Hz (whole multiplets); h = shear wavelength at f_max / {}, at most the "
-                     "thinnest part / {}; multiplets split by < {}; tolerance {}, residuals <= {}; {} rank(s) per entry; "
+                     "thinnest part / {}; clusters split by > {}; tolerance {}, residuals <= {}; {} rank(s) per entry; "
                      "a scene's objects taken below {} Hz\n",
                      h.f_max_hz, h.elements_per_wavelength, h.elements_through_thickness, h.solve.cluster_gap,
                      h.solve.tolerance, h.solve.residual_limit, h.ranks_per_task, h.proxy_above_hz);
@@ -54,8 +54,9 @@ std::string object_bank_info(const std::string& path, std::optional<std::size_t>
                        i, oe.key, oe.material.name, e.modes(), e.modes() ? e.frequencies_hz.front() : 0.0,
                        e.modes() ? e.frequencies_hz.back() : 0.0, e.mesh.dofs, e.mesh.edge_length_m, oe.min_thickness_m,
                        worst, order, boundary, e.cost.total_s, oe.source);
-    out += fmt::format("         multiplets (size x count): {}; mass {:.4g} kg, radius {:.4g} m\n", multiplicities(e),
-                       oe.mass_kg, oe.radius_m);
+    out += fmt::format("         clusters (frequencies within the gap; size x count): {}; mass {:.4g} kg, radius {:.4g} m\n",
+                       group_sizes(e.cluster), oe.mass_kg, oe.radius_m);
+    out += "         band: " + band_guarantee(e, "") + "\n";
   }
   const auto& sw = bank.sweep;
   out += fmt::format("  sweep:      {} of {} entries in the bank, {} failed, {} missing\n", sw.tasks_done(), sw.tasks_total,

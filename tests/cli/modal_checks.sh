@@ -84,7 +84,7 @@ echo "(d) 2 groups of 2 on 4 ranks: $(sum d.h5)"
 grep -q "2 ellipsoids" info.log || fail "info does not count the entries: $(cat info.log)"
 grep -Eq "5x[0-9]+" info.log || fail "info shows no 5-fold multiplet for the sphere: $(cat info.log)"
 "$bank" info a.h5 --entry 0 > entry.log 2>&1 || fail "info --entry: exit $?"
-grep -q "^mode,frequency_hz,damping_ratio,multiplet,multiplicity,relative_residual,transfer_order,boundary_residual" entry.log || fail "no mode table"
+grep -q "^mode,frequency_hz,damping_ratio,cluster,cluster_size,multiplet,multiplet_size,symmetry_order,relative_residual,transfer_order,boundary_residual" entry.log || fail "no mode table"
 
 # probe: |p_k(x)| of every mode (docs/transfer.md); the proxy scaled by 0.1 and heard at 0.1 x the
 # distance has 10x the frequencies and 0.1^-5/2 = 316.23x the pressure (003 eq. 9).

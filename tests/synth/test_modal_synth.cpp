@@ -42,12 +42,15 @@ model::ModalBank synthetic_bank(const std::vector<SyntheticMode>& modes) {
   model::ModalBank bank = sphere_bank();
   bank.entries.resize(1);
   model::ModalEntry& e = bank.entries[0];
-  e.frequencies_hz.clear(), e.damping_ratios.clear(), e.cluster.clear(), e.relative_residuals.clear(), e.shapes.clear();
+  e.frequencies_hz.clear(), e.damping_ratios.clear(), e.cluster.clear(), e.multiplet.clear(), e.symmetry_order.clear(),
+      e.relative_residuals.clear(), e.shapes.clear();
   e.transfer = {};
   for (const auto& m : modes) {
     e.frequencies_hz.push_back(m.f_hz);
     e.damping_ratios.push_back(0);
     e.cluster.push_back(static_cast<std::int32_t>(e.cluster.size()));
+    e.multiplet.push_back(e.cluster.back());
+    e.symmetry_order.push_back(-1);
     e.relative_residuals.push_back(0);
     for (const auto& node : e.surface_nodes_m)
       for (double u : m.shape(node)) e.shapes.push_back(u);
