@@ -307,6 +307,7 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   write_attribute<double>(file, "/settings", "f_max_multiple", h.solve.f_max_multiple);
   write_attribute<double>(file, "/settings", "band_top_hz", h.band.top_hz);
   write_attribute<double>(file, "/settings", "band_largest_piece_m", h.band.largest_piece_m);
+  write_attribute<double>(file, "/settings", "band_proxy_above_hz", h.band.proxy_above_hz);
   write_attribute<double>(file, "/settings", "band_max_multiple", h.band.max_multiple);
   write_attribute<double>(file, "/settings", "elements_per_wavelength", h.elements_per_wavelength);
   write_attribute<double>(file, "/settings", "min_ratio", h.min_ratio);
@@ -343,6 +344,7 @@ model::ModalBank read_modal_bank(const std::string& path) {
   h.solve.f_max_multiple = read_attribute<double>(file, "/settings", "f_max_multiple");
   h.band.top_hz = read_attribute<double>(file, "/settings", "band_top_hz");
   h.band.largest_piece_m = read_attribute<double>(file, "/settings", "band_largest_piece_m");
+  h.band.proxy_above_hz = read_attribute<double>(file, "/settings", "band_proxy_above_hz");
   h.band.max_multiple = read_attribute<double>(file, "/settings", "band_max_multiple");
   h.elements_per_wavelength = read_attribute<double>(file, "/settings", "elements_per_wavelength");
   h.min_ratio = read_attribute<double>(file, "/settings", "min_ratio");

@@ -159,19 +159,24 @@ struct ModalSolveSettings {
 };
 
 // How each entry's band is chosen (docs/modal.md "Every audible mode"): [f_1, k f_1] with
-//   k = top_hz * largest_piece_m / (2 c f_1),  clamped to [solve.f_max_multiple, max_multiple],
-// c the entry's normalized longest semi-axis: equi-frequency scaling gives a piece of the entry's
-// shape and longest dimension L the base frequency f_0 = f_1 2c / L, so every piece up to
-// largest_piece_m gets every mode up to top_hz. largest_piece_m = 0: k = solve.f_max_multiple.
+//   k = min(top_hz * largest_piece_m / (2 c f_1), top_hz / proxy_above_hz),
+// clamped to [solve.f_max_multiple, max_multiple], c the entry's normalized longest semi-axis.
+// Equi-frequency scaling gives a piece of the entry's shape and longest dimension L the base
+// frequency f_0 = f_1 2c / L, so every piece up to largest_piece_m gets every mode up to top_hz;
+// and a piece whose f_0 is below proxy_above_hz rings with its own model (003 section 5.4), so no
+// proxy needs more than top_hz / proxy_above_hz. largest_piece_m = 0: k = solve.f_max_multiple;
+// proxy_above_hz = 0: no such bound.
 struct BandRule {
   double top_hz = 20000;          // the top of the audible band
   double largest_piece_m = 0;     // the longest piece (2c) that gets every mode to top_hz
+  double proxy_above_hz = 0;      // pieces with a lower f_0 ring with their own models, not a proxy
   double max_multiple = 64;       // the cost's limit on k
 };
 
 // k of an entry whose normalized longest semi-axis is c_m and first frequency f1_hz.
 inline double band_multiple(const BandRule& band, double min_multiple, double c_m, double f1_hz) {
-  const double wanted = band.top_hz * band.largest_piece_m / (2 * c_m * f1_hz);
+  double wanted = band.top_hz * band.largest_piece_m / (2 * c_m * f1_hz);
+  if (band.proxy_above_hz > 0) wanted = std::min(wanted, band.top_hz / band.proxy_above_hz);
   return std::max(min_multiple, std::min(band.max_multiple, wanted));
 }
 

@@ -47,6 +47,9 @@ const io::Schema& modal_schema() {
           {"modes.largest_piece_m", 0.3, "every piece up to this longest dimension (2c, in the bank's material) gets "
                                          "every mode up to modes.top_hz; 0: the band is f_max_multiple x f_1 [m]",
            {0.0, 100.0}},
+          {"modes.proxy_above_hz", 2000.0, "pieces whose base frequency is below this ring with their own models "
+                                           "(clatter-synth --proxy-above-hz, 003 section 5.4), so no entry needs a band "
+                                           "beyond modes.top_hz / this x f_1; 0: no such bound [Hz]", {0.0, 1e6}},
           {"modes.max_multiple", 64.0, "the largest band multiple an entry may need (its cost's limit)",
            {1.0, 1000.0, true}},
           {"modes.cluster_gap", 5e-3, "relative gap below which neighbouring frequencies form one cluster",
@@ -117,7 +120,8 @@ ModalSpec make_modal_spec(const io::Config& config) {
   h.min_ratio = config.real("patch.min_ratio");
   h.solve = solve_settings(config);
   h.solve.f_max_multiple = config.real("modes.f_max_multiple");
-  h.band = {config.real("modes.top_hz"), config.real("modes.largest_piece_m"), config.real("modes.max_multiple")};
+  h.band = {config.real("modes.top_hz"), config.real("modes.largest_piece_m"), config.real("modes.proxy_above_hz"),
+            config.real("modes.max_multiple")};
   if (h.band.max_multiple < h.solve.f_max_multiple)
     throw InputError(fmt::format("modes.max_multiple = {} is below modes.f_max_multiple = {}: the band's limit must "
                                  "allow its smallest multiple", h.band.max_multiple, h.solve.f_max_multiple));
@@ -164,9 +168,11 @@ std::string modal_sweep_toml(const io::Config& config, const ModalSpec& spec) {
 std::string band_text(const model::ModalBankHeader& h) {
   const auto& b = h.band;
   if (b.largest_piece_m <= 0) return fmt::format("modes to {:g} f_1", h.solve.f_max_multiple);
-  return fmt::format("modes to k f_1, k = {:g} Hz x {:g} m / (2 c f_1) within [{:g}, {:g}]: every piece up to {:g} m long "
-                     "gets every mode to {:g} Hz", b.top_hz, b.largest_piece_m, h.solve.f_max_multiple, b.max_multiple,
-                     b.largest_piece_m, b.top_hz);
+  const std::string proxy = b.proxy_above_hz > 0 ? fmt::format(", at most {:g} Hz / {:g} Hz", b.top_hz, b.proxy_above_hz) : "";
+  return fmt::format("modes to k f_1, k = {:g} Hz x {:g} m / (2 c f_1){} within [{:g}, {:g}]: every piece up to {:g} m "
+                     "long{} gets every mode to {:g} Hz", b.top_hz, b.largest_piece_m, proxy, h.solve.f_max_multiple,
+                     b.max_multiple, b.largest_piece_m,
+                     b.proxy_above_hz > 0 ? fmt::format(" whose f_0 is at least {:g} Hz", b.proxy_above_hz) : "", b.top_hz);
 }
 
 std::vector<ModalTask> modal_tasks(const ModalSpec& spec) {
