@@ -52,7 +52,7 @@ EntryPlan plan_entry(const ModalSpec& spec, std::size_t i) {
     p.modes = petsc::eigenvalues_below(coarse.model.K, coarse.model.M, k * k * coarse.lambda1 * 1.0001) - 6;
     p.f1_hz = coarse.f1_hz();
     p.h_m = modal_edge_length_m(spec, p.f1_hz);
-    p.dofs = mesh_entry(spec, axes, p.h_m).quality.dofs;
+    p.dofs = mesh_entry(spec, axes, p.h_m, spec.header.elements_through_thickness).quality.dofs;
   } catch (const std::exception& e) {
     p.failure = e.what();
   }
