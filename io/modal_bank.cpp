@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "io/modal_transfer.hpp"
@@ -315,6 +316,8 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   write_attribute<double>(file, "/settings", "degenerate_gap", h.solve.degenerate_gap);
   write_attribute<std::int32_t>(file, "/settings", "reference_fields", kernels_reference_fields);
   write_attribute<double>(file, "/settings", "coarse_edge_m", h.coarse_edge_m);
+  write_attribute<double>(file, "/settings", "elements_through_thickness", h.elements_through_thickness);
+  write_attribute<double>(file, "/settings", "coarse_elements_through_thickness", h.coarse_elements_through_thickness);
   write_attribute<double>(file, "/settings", "solver_tolerance", h.solve.tolerance);
   write_attribute<double>(file, "/settings", "residual_limit", h.solve.residual_limit);
   write_attribute<std::int32_t>(file, "/settings", "ranks_per_task", h.ranks_per_task);
@@ -351,6 +354,10 @@ model::ModalBank read_modal_bank(const std::string& path) {
   h.solve.cluster_gap = read_attribute<double>(file, "/settings", "cluster_gap");
   h.solve.degenerate_gap = read_attribute<double>(file, "/settings", "degenerate_gap");
   h.coarse_edge_m = read_attribute<double>(file, "/settings", "coarse_edge_m");
+  // Banks before the setting had both caps fixed at 3 elements through the thinnest axis.
+  for (auto [name, value] : {std::pair{"elements_through_thickness", &h.elements_through_thickness},
+                             std::pair{"coarse_elements_through_thickness", &h.coarse_elements_through_thickness}})
+    *value = has_attribute(file, "/settings", name) ? read_attribute<double>(file, "/settings", name) : 3.0;
   h.solve.tolerance = read_attribute<double>(file, "/settings", "solver_tolerance");
   h.solve.residual_limit = read_attribute<double>(file, "/settings", "residual_limit");
   h.ranks_per_task = read_attribute<std::int32_t>(file, "/settings", "ranks_per_task");

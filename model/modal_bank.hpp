@@ -188,6 +188,8 @@ struct ModalBankHeader {
   double elements_per_wavelength = 0;  // h = shear wavelength at f_max / this
   double min_ratio = 0;                // smallest a/c of the sampled patch
   double coarse_edge_m = 0;            // h of the pre-solve that estimates f_1
+  double elements_through_thickness = 0;         // h <= 2 a / this (a the smallest semi-axis), fine mesh
+  double coarse_elements_through_thickness = 0;  // the same cap on the pre-solve's mesh
   std::int32_t ranks_per_task = 0;     // ranks that solved each entry (shapes agree across it to ~1e-8)
   std::string solver_libraries;        // e.g. "PETSc 3.18.5, SLEPc 3.18.2": the last bits depend on them
   TransferSettings transfer;

@@ -291,4 +291,41 @@ EigenSolution solve_interval(const Matrix& K, const Matrix& M, const SliceSettin
   return out;
 }
 
+EigenSolution lowest_eigenpairs(const Matrix& K, const Matrix& M, const LowestSettings& settings,
+                                std::span<const Vector> deflation) {
+  if (!(K.layout() == M.layout())) throw std::invalid_argument("lowest_eigenpairs: K and M have different row layouts");
+  if (!(std::isfinite(settings.shift) && settings.count >= 1 && settings.tolerance > 0 && settings.tolerance < 1 &&
+        settings.max_iterations >= 0))
+    throw std::invalid_argument("lowest_eigenpairs: need a finite shift, count >= 1, tolerance in (0, 1), max_iterations >= 0");
+  Stage stage("eigensolve");
+  Options o;
+  o.set("-eps_type", "krylovschur").set("-eps_gen_hermitian").set("-eps_nev", static_cast<long long>(settings.count));
+  o.set("-eps_target", settings.shift).set("-eps_target_magnitude").set("-eps_tol", settings.tolerance);
+  if (settings.max_iterations > 0) o.set("-eps_max_it", static_cast<long long>(settings.max_iterations));
+  o.set("-st_type", "sinvert").set("-st_ksp_type", "preonly").set("-st_pc_type", "cholesky");
+  o.set("-st_pc_factor_mat_solver_type", "mumps");
+  o.set("-st_matstructure", K.pattern_fingerprint() == M.pattern_fingerprint() ? "same" : "different");
+  EigenSolution out;
+  out.options = o.text();
+  const ScopedOptions scoped(o, next_prefix());
+  EpsPtr eps = make_solver(K, M, scoped.prefix());
+  std::vector<Vec> space;
+  for (const Vector& v : deflation) space.push_back(v.get());
+  if (!space.empty())
+    check(EPSSetDeflationSpace(eps.get(), static_cast<PetscInt>(space.size()), space.data()), "EPSSetDeflationSpace");
+  out.stats.setup_s = timed_step("setup", out.stats, [&] { check(EPSSetUp(eps.get()), "EPSSetUp"); });
+  out.stats.solve_s = timed_step("solve", out.stats, [&] { check(EPSSolve(eps.get()), "EPSSolve"); });
+  out.stats.shifts = 1;
+  if (auto unused = scoped.unused(); !unused.empty())
+    throw std::logic_error("lowest_eigenpairs: PETSc never read option " + unused.front());
+  collect(eps.get(), K, out);
+  if (static_cast<PetscInt>(out.lambdas.size()) < settings.count)
+    throw std::runtime_error("lowest_eigenpairs: " + std::to_string(out.lambdas.size()) + " of " +
+                             std::to_string(settings.count) + " eigenpairs converged");
+  out.lambdas.resize(static_cast<std::size_t>(settings.count));
+  out.vectors.erase(out.vectors.begin() + settings.count, out.vectors.end());
+  finish_pairs(K, M, out);
+  return out;
+}
+
 }  // namespace clatter::petsc

@@ -57,4 +57,24 @@ struct EigenSolution {
 EigenSolution solve_interval(const Matrix& K, const Matrix& M, const SliceSettings& settings,
                              std::span<const Vector> deflation = {});
 
+// The `count` lowest eigenpairs of K x = lambda M x above `shift` (below every wanted eigenvalue; a
+// free body's K is singular, so put it below 0): SLEPc's Krylov-Schur on the shift-inverted pencil,
+// one MUMPS LDL^T factorisation of K - shift M, the `deflation` vectors (the rigid motions) kept
+// out of the Krylov space by EPSSetDeflationSpace, which SLEPc 3.18 allows without slicing. The
+// closer the shift to the first eigenvalue (relative to the gap to the next), the fewer the
+// iterations. No inertia check: a start vector without a component along the lowest eigenvector
+// would miss it, which a random start does not in practice; where completeness matters, slice.
+struct LowestSettings {
+  double shift = 0;
+  PetscInt count = 1;
+  double tolerance = 1e-12;     // -eps_tol
+  PetscInt max_iterations = 0;  // restarts (-eps_max_it); 0: SLEPc's default
+};
+
+// Collective on K's communicator. lambdas ascending, vectors as solve_interval's (M-normalised,
+// sign fixed), relative residuals; below_lo, below_hi and the count check are not computed.
+// Throws Error on a PETSc failure, std::runtime_error when fewer than `count` pairs converged.
+EigenSolution lowest_eigenpairs(const Matrix& K, const Matrix& M, const LowestSettings& settings,
+                                std::span<const Vector> deflation = {});
+
 }  // namespace clatter::petsc

@@ -32,10 +32,11 @@ double median(std::vector<double> v) {
 double since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
 
 // Every rank meshes alike (TetGen is deterministic), so a failure is the same everywhere.
-kernels::fem::EllipsoidMesh mesh_or_fail(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m) {
+kernels::fem::EllipsoidMesh mesh_or_fail(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m,
+                                         double elements_through_thickness) {
   Stage stage("mesh");
   try {
-    return mesh_entry(spec, axes, h_m);
+    return mesh_entry(spec, axes, h_m, elements_through_thickness);
   } catch (const std::exception& e) {
     throw TaskFailure(e.what());
   }
@@ -98,12 +99,14 @@ void store_modes(MPI_Comm group, const ModeSet& modes, const kernels::fem::Tet10
   if (root) store_multiplets(symmetry, entry);
 }
 
-kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m) {
+kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m,
+                                       double elements_through_thickness) {
   std::string reasons;
   for (double factor : {1.0, 0.7, 0.5}) {
     try {
       kernels::fem::EllipsoidMeshSettings settings{axes, factor * h_m};
-      settings.spacing_per_curvature_radius *= factor;  // the cap 2a/3 may fix h: refine the surface too
+      settings.elements_through_thickness = elements_through_thickness / factor;  // the cap may fix h
+      settings.spacing_per_curvature_radius *= factor;
       return kernels::fem::mesh_ellipsoid(settings, spec.bounds);
     } catch (const kernels::fem::MeshError& e) {
       reasons += fmt::format("{}at h = {:.4g} m: {}", reasons.empty() ? "" : "; ", factor * h_m, e.what());
@@ -123,10 +126,11 @@ double modal_edge_length_m(const ModalSpec& spec, double f_max_hz) {
 FirstModeEstimate estimate_first_mode(MPI_Comm comm, const ModalSpec& spec, const std::array<double, 3>& axes) {
   Stage stage("estimate");
   const auto& material = spec.header.material;
-  auto coarse = mesh_or_fail(spec, axes, spec.header.coarse_edge_m);
+  auto coarse = mesh_or_fail(spec, axes, spec.header.coarse_edge_m, spec.header.coarse_elements_through_thickness);
   FemModel model = assemble_fem(comm, coarse.mesh, material);
-  // A sphere of radius c rings at omega c / c_s ~ 2.5 (Lamb's n = 2); elongation lowers it.
-  const double guess = std::pow(2.5 * material.shear_speed_m_s() / axes[2], 2);
+  // A sphere of radius c rings at omega c / c_s ~ 2.5 (Lamb's n = 2); a plate's or a rod's first
+  // mode bends, at omega ~ c_s x thickness / length^2: a / c times the sphere's.
+  const double guess = std::pow(2.5 * material.shear_speed_m_s() * axes[0] / (axes[2] * axes[2]), 2);
   const double lambda1 = first_elastic_lambda(model, guess, spec.header.solve);
   return {std::move(coarse), std::move(model), lambda1};
 }
@@ -148,7 +152,7 @@ model::ModalEntry build_modal_entry(MPI_Comm group, const ModalSpec& spec, std::
   settings.f_max_multiple = entry_band_multiple(spec, axes, f1_estimate_hz);
   auto t0 = clock_type::now();
   const double h_m = modal_edge_length_m(spec, settings.f_max_multiple * f1_estimate_hz);
-  const auto mesh = mesh_or_fail(spec, axes, h_m);
+  const auto mesh = mesh_or_fail(spec, axes, h_m, spec.header.elements_through_thickness);
   entry.cost.mesh_s = since(t0);
   t0 = clock_type::now();
   std::optional<FemModel> model;

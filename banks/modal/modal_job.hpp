@@ -30,11 +30,13 @@ TaskWriter run_modal_task(MPI_Comm group, const ModalSpec& spec, const ModalTask
 model::ModalBank merge_modal_results(const ModalSpec& spec, const std::string& results_dir,
                                      const std::string& config_toml);
 
-// The ellipsoid's mesh at edge length h_m, or, when it breaks the quality bounds, at 0.7 and then
-// 0.5 times both h_m and the surface spacing per curvature radius (a finer surface resolves the
-// curvature that folded; h alone may be held by the thickness cap); throws a MeshError
-// with every attempt's reason. Deterministic, so every rank of a group gets the same mesh.
-kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m);
+// The ellipsoid's mesh at edge length h_m, at most 2 a / elements_through_thickness (a the smallest
+// semi-axis), or, when it breaks the quality bounds, at 0.7 and then 0.5 times h_m, that cap and
+// the surface spacing per curvature radius (a finer surface resolves the curvature that folded);
+// throws a MeshError with every attempt's reason. Deterministic, so every rank of a group gets
+// the same mesh.
+kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m,
+                                       double elements_through_thickness);
 
 // The pre-solve that estimates f_1 (stage `estimate`, docs/modal.md): the ellipsoid meshed at
 // header.coarse_edge_m (mesh_entry; a failure is the task's TaskFailure), K and M assembled on

@@ -18,9 +18,15 @@
 namespace clatter::jobs {
 namespace {
 
-// Time ~ modes x dofs^1.5: each mode costs a share of a shift's factorization and solves with
-// the factors; 3-D nested-dissection factorizations grow like n^2, their solves like n^(4/3).
-constexpr double kDofsExponent = 1.5;
+// The eigen-solve ~ dofs^1.34 (1 + modes / 18): a fixed share (the slice's end factorizations and
+// the count check) and one per mode (shifts and solves with the factors), both growing like a
+// sparse factorization of the mesh (n^1.5 for plate-like meshes, n^2 in 3-D; measured between).
+// Fitted to 5 entries of 1 to 260 modes and 4 938 to 126 474 dofs within 13 % (docs/benchmarks.md
+// "Modal bank"). The pre-solve (one factorization and a few Krylov restarts on the coarse mesh)
+// grows like its dofs; mesh and assembly like the entry's.
+constexpr double kDofsExponent = 1.34;
+constexpr double kModesPerFixedShare = 18;
+constexpr double kEstimateExponent = 1.0;
 // Factor memory of 3-D nested dissection grows like n^(4/3).
 constexpr double kMemoryExponent = 4.0 / 3.0;
 // Measured (docs/benchmarks.md "Modal bank"): 2 ranks per task run the default sphere entry 1.23x
@@ -37,7 +43,7 @@ double top_kc(const ModalSpec& spec, double f_max_hz, const std::array<double, 3
 
 struct EntryPlan {
   double f1_hz = 0, k = 0, h_m = 0;
-  long long dofs = 0, modes = 0;
+  long long dofs = 0, coarse_dofs = 0, modes = 0;
   double task_s = 0, memory_mb = 0;
   std::string failure;  // the mesh or pre-solve failed: the task will fail the same way
 };
@@ -50,8 +56,9 @@ EntryPlan plan_entry(const ModalSpec& spec, std::size_t i) {
     p.f1_hz = coarse.f1_hz();
     p.k = entry_band_multiple(spec, axes, p.f1_hz);
     p.modes = petsc::eigenvalues_below(coarse.model.K, coarse.model.M, p.k * p.k * coarse.lambda1 * 1.0001) - 6;
+    p.coarse_dofs = coarse.mesh.quality.dofs;
     p.h_m = modal_edge_length_m(spec, p.k * p.f1_hz);
-    p.dofs = mesh_entry(spec, axes, p.h_m).quality.dofs;
+    p.dofs = mesh_entry(spec, axes, p.h_m, spec.header.elements_through_thickness).quality.dofs;
   } catch (const std::exception& e) {
     p.failure = e.what();
   }
@@ -73,7 +80,9 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     if (entries[i].failure.empty() && (cal == tasks.size() || entries[i].dofs < entries[cal].dofs)) cal = i;
   if (cal == tasks.size()) throw InputError("plan: no entry of the sweep meshes; see mesh.* and patch.samples");
   const auto entry = build_modal_entry(MPI_COMM_SELF, spec, cal);
-  const double cal_transfer_s = entry.cost.transfer_s, cal_s = entry.cost.total_s - cal_transfer_s;
+  const double cal_transfer_s = entry.cost.transfer_s, cal_estimate_s = entry.cost.estimate_s,
+               cal_setup_s = entry.cost.mesh_s + entry.cost.assembly_s,
+               cal_solve_s = entry.cost.total_s - cal_transfer_s - cal_estimate_s - cal_setup_s;
   const double cal_modes = static_cast<double>(std::max<std::size_t>(entry.modes(), 1));
   const double cal_kc = top_kc(spec, entries[cal].k * entries[cal].f1_hz, spec.samples_m[cal]);
   // The coarse mesh undercounts the top of the range (its frequencies are high): scaled by what
@@ -93,8 +102,11 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     const double dofs_ratio = static_cast<double>(p.dofs) / cal_dofs;
     const double mode_ratio = static_cast<double>(p.modes) / cal_modes;
     const double kc_ratio = top_kc(spec, p.k * p.f1_hz, spec.samples_m[static_cast<std::size_t>(&p - entries.data())]) / cal_kc;
-    p.task_s = cal_s * mode_ratio * std::pow(dofs_ratio, kDofsExponent) / group_speedup +
-               cal_transfer_s * mode_ratio * std::pow(kc_ratio, kTransferExponent) / o.ranks_per_task;
+    const double coarse_ratio = static_cast<double>(p.coarse_dofs) / static_cast<double>(entries[cal].coarse_dofs);
+    const double fem_s = cal_estimate_s * std::pow(coarse_ratio, kEstimateExponent) + cal_setup_s * dofs_ratio +
+                         cal_solve_s * std::pow(dofs_ratio, kDofsExponent) * (1 + static_cast<double>(p.modes) / kModesPerFixedShare) /
+                             (1 + cal_modes / kModesPerFixedShare);
+    p.task_s = fem_s / group_speedup + cal_transfer_s * mode_ratio * std::pow(kc_ratio, kTransferExponent) / o.ranks_per_task;
     p.memory_mb = cal_memory * std::pow(dofs_ratio, kMemoryExponent) / o.ranks_per_task;
     e.task_s.push_back(p.task_s);
     core_s += p.task_s * o.ranks_per_task;
@@ -112,9 +124,11 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
   e.report += fmt::format("  pre-solves:  every entry's f_1, h, dofs and mode count (coarse inertia) in {:.1f} s here\n",
                           presolve_s);
   e.report += fmt::format("  calibration: {} solved here in {:.1f} s + {:.1f} s transfer: {} modes, {} dofs, {:.0f} MB MUMPS "
-                          "factors; time ~ modes x dofs^{} / ranks_per_task^{} + modes x (k c)^{} / ranks_per_task\n",
-                          tasks[cal].name, cal_s, cal_transfer_s, entry.modes(), entry.mesh.dofs, cal_memory,
-                          kDofsExponent, kGroupSpeedupExponent, kTransferExponent);
+                          "factors; time ~ (coarse dofs^{} + dofs + dofs^{} (1 + modes/{})) / ranks_per_task^{} + "
+                          "modes x (k c)^{} / ranks_per_task\n",
+                          tasks[cal].name, entry.cost.total_s - cal_transfer_s, cal_transfer_s, entry.modes(),
+                          entry.mesh.dofs, cal_memory, kEstimateExponent, kDofsExponent, kModesPerFixedShare,
+                          kGroupSpeedupExponent, kTransferExponent);
   e.report += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}: {:.2f} core-hours\n",
                           o.ranks, e.nodes, cores, groups, o.ranks_per_task, core_s / 3600);
   e.report += fmt::format("  predicted:   {} wall (tasks handed out in order); largest MUMPS factors per rank ~{:.0f} MB; time "

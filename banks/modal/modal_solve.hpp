@@ -1,6 +1,6 @@
 #pragma once
-// The eigen-solve of one ellipsoid's FEM model on its task group: the first elastic mode by
-// inertia bracketing, then every mode in [f_1, f_max] by SLEPc spectrum slicing (count-checked by
+// The eigen-solve of one ellipsoid's FEM model on its task group: the first elastic mode by one
+// shift-and-invert solve, then every mode in [f_1, f_max] by SLEPc spectrum slicing (count-checked by
 // inertia, rigid motions deflated) and on by the mesh's error margin, whole clusters kept, the basis rule of
 // kernels/modal/mode_basis.hpp applied. Collective on the model's communicator.
 #include <vector>
@@ -13,9 +13,11 @@ namespace clatter::jobs {
 
 // Both solves take the bank header's settings (model::ModalBankHeader::solve) as they are.
 
-// The lowest eigenvalue above the 6 rigid motions [rad^2/s^2]. `guess` may be on either side.
-// Of `settings` only the slicing's (tolerance, max_iterations, nev_per_shift) are read.
-// Throws TaskFailure when the inertia never shows exactly 6 motions below a shift.
+// The lowest eigenvalue above the 6 rigid motions [rad^2/s^2]: one shift-and-invert Krylov-Schur
+// solve at -guess/100 with the rigid motions deflated (petsc::lowest_eigenpairs), one
+// factorisation. `guess` may be on either side, best within 100x. Of `settings` only tolerance
+// and max_iterations are read. Throws TaskFailure when the solve fails or finds a near-zero
+// eigenvalue besides the rigid motions (a spurious mode). Bit-reproducible on one rank.
 double first_elastic_lambda(const FemModel& model, double guess, const model::ModalSolveSettings& settings);
 
 // How fine a mesh is, for its frequency error: the edge length asked of the mesher from the shear

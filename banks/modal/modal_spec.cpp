@@ -57,6 +57,9 @@ const io::Schema& modal_schema() {
           {"mesh.elements_per_wavelength", 3.0, "h = shear wavelength at f_max / this", {1.0, 20.0}},
           {"mesh.coarse_edge_m", 0.25, "h of the pre-solve that estimates f_1 (sets h and the interval) [m]",
            {0.0, 1.0, true}},
+          {"mesh.elements_through_thickness", 3.0, "and h at most 2 a / this (a the smallest semi-axis; 10-node "
+           "tetrahedra hold bending exactly)", {0.5, 20.0}},
+          {"mesh.coarse_elements_through_thickness", 3.0, "the same cap on the pre-solve's mesh", {0.5, 20.0}},
           {"mesh.max_radius_edge", 3.0, "largest radius-edge ratio a mesh may have", {1.0, 100.0}},
           {"mesh.min_dihedral_deg", 5.0, "smallest dihedral angle a mesh may have [deg]", {0.0, 60.0}},
           {"mesh.min_jacobian_ratio", 0.2, "smallest min/max det J within a curved element", {0.0, 1.0, true}},
@@ -127,6 +130,8 @@ ModalSpec make_modal_spec(const io::Config& config) {
                                  "allow its smallest multiple", h.band.max_multiple, h.solve.f_max_multiple));
   h.elements_per_wavelength = config.real("mesh.elements_per_wavelength");
   h.coarse_edge_m = config.real("mesh.coarse_edge_m");
+  h.elements_through_thickness = config.real("mesh.elements_through_thickness");
+  h.coarse_elements_through_thickness = config.real("mesh.coarse_elements_through_thickness");
   h.transfer.method = "equivalent sources (monopoles on a layer under the surface, 8 parity classes), multipole "
                       "about the centre";
   read_transfer_keys(config, h.transfer);

@@ -128,9 +128,9 @@ void check_bounds(const MeshQuality& q, const EllipsoidMeshBounds& b) {
 
 EllipsoidMesh mesh_ellipsoid(const EllipsoidMeshSettings& s, const EllipsoidMeshBounds& bounds) {
   const P3& r = s.semi_axes_m;
-  if (!(r[0] > 0 && r[1] > 0 && r[2] > 0 && s.edge_length_m > 0))
-    throw std::invalid_argument("mesh_ellipsoid: semi-axes and edge length must be positive");
-  const double h = std::min(s.edge_length_m, 2 * std::min({r[0], r[1], r[2]}) / 3);
+  if (!(r[0] > 0 && r[1] > 0 && r[2] > 0 && s.edge_length_m > 0 && s.elements_through_thickness > 0))
+    throw std::invalid_argument("mesh_ellipsoid: semi-axes, edge length and elements through the thickness must be positive");
+  const double h = std::min(s.edge_length_m, 2 * std::min({r[0], r[1], r[2]}) / s.elements_through_thickness);
   SurfaceTriangulation surface = ellipsoid_surface(r, h, s.spacing_per_curvature_radius);
   const EdgeRule rule = surface_rule(r, h, s.spacing_per_curvature_radius);
   MeshRepairs repairs;
@@ -145,6 +145,10 @@ EllipsoidMesh mesh_ellipsoid(const EllipsoidMeshSettings& s, const EllipsoidMesh
       if (!repairs.dropped.count(p)) inner.push_back(p);
     for (const P3& p : repairs.extra)
       if (!repairs.dropped.count(p)) inner.push_back(p);
+    // A repair's surface bisections can make faces cross where the body is thinner than them
+    // (TetGen 1.5 then fails, and its failure path frees its memory twice): keep the last mesh,
+    // which the bounds judge below.
+    if (round > 0 && tetgen_fill(surface.vertices_m, surface.faces, "", true).intersecting_faces > 0) break;
     LinearMesh linear = run_tetgen(surface, inner, s, h);
     for (std::size_t v = 0; v < surface.vertices_m.size(); ++v)
       if (linear.points[v] != surface.vertices_m[v]) throw MeshError("TetGen moved a surface point");

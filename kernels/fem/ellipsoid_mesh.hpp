@@ -23,7 +23,10 @@ inline constexpr double kSpacingPerCurvatureRadius = 1.0;  // k
 
 struct EllipsoidMeshSettings {
   std::array<double, 3> semi_axes_m{1, 1, 1};  // a, b, c
-  double edge_length_m = 0.25;                 // target h; capped at (2 min axis)/3: 3 edges through the thinnest
+  double edge_length_m = 0.25;                 // target h; capped at (2 min axis) / elements_through_thickness
+  // Quadratic elements through the thinnest axis: 10-node tetrahedra hold pure bending exactly, so
+  // a plate needs few (docs/modal.md "Defaults and why" measures 1 to 3 on 1:33 ellipsoids).
+  double elements_through_thickness = 3;
   double max_radius_edge = 1.5;                // TetGen's -q bound (circumradius / shortest edge)
   double min_dihedral_deg = 12.0;              // TetGen's -q bound on the smallest dihedral angle
   double spacing_per_curvature_radius = kSpacingPerCurvatureRadius;  // k above; scale it with h to refine all
@@ -55,7 +58,7 @@ class MeshError : public std::runtime_error {
 };
 
 // Deterministic: the same settings give a bit-identical mesh. Throws std::invalid_argument for
-// non-positive axes or h, MeshError when TetGen fails or the mesh breaks `bounds`.
+// non-positive axes, h or elements through the thickness, MeshError when TetGen fails or the mesh breaks `bounds`.
 EllipsoidMesh mesh_ellipsoid(const EllipsoidMeshSettings& settings, const EllipsoidMeshBounds& bounds = {});
 
 // The closed surface triangulation handed to TetGen (vertices on the ellipsoid, faces outward):

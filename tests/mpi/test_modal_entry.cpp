@@ -221,8 +221,8 @@ TEST(ModalEntrySlow, MeshErrorModelBoundsLamb) {
     const auto spec = spec_for(samples_text(kSphere, kSphere, kSphere), k, per_wavelength);
     const auto& glass = spec.header.material;
     const double lambda1 = jobs::estimate_first_mode(MPI_COMM_WORLD, spec, axes).lambda1;
-    const double h_m = jobs::modal_edge_length_m(spec, jobs::frequency_hz(lambda1));
-    const auto mesh = jobs::mesh_entry(spec, axes, h_m);
+    const double h_m = jobs::modal_edge_length_m(spec, k * jobs::frequency_hz(lambda1));
+    const auto mesh = jobs::mesh_entry(spec, axes, h_m, spec.header.elements_through_thickness);
     const auto model = jobs::assemble_fem(MPI_COMM_WORLD, mesh.mesh, glass);
     const auto reference = jobs::reference_fields(model.layout, mesh.mesh, axes);
     const auto set = jobs::solve_modes(model, reference, lambda1, spec.header.solve, {h_m, glass.shear_speed_m_s()});

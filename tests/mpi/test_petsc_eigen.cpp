@@ -129,6 +129,32 @@ TEST(PetscEigen, FreeFreeDeflatedLeavesOutTheConstantAndKeepsTheRest) {
   expect_pairs_good(p.M, s);
 }
 
+// The pre-solve's path (banks/modal/modal_solve.hpp first_elastic_lambda): one shift below the
+// null space, the constant deflated; the lowest eigenvalues are the closed form's k = 1, 2, 3, from
+// a shift far below (1000 lambda_1) as from one close to 0.
+TEST(PetscEigen, LowestAboveTheDeflatedNullSpace) {
+  const int n = 80;
+  Problem p = laplacian(MPI_COMM_WORLD, n, false);
+  std::vector<Vector> null_space;
+  null_space.emplace_back(p.layout, std::vector<double>(static_cast<std::size_t>(p.layout.local_size()), 1.0));
+  for (double shift : {-1e-3 * lambda_exact(1, n), -1e3 * lambda_exact(1, n)}) {
+    LowestSettings settings;
+    settings.shift = shift;
+    settings.count = 3;
+    settings.tolerance = 1e-12;
+    const EigenSolution s = lowest_eigenpairs(p.K, p.M, settings, null_space);
+    ASSERT_EQ(s.lambdas.size(), 3u);
+    for (int k = 1; k <= 3; ++k)
+      EXPECT_NEAR(s.lambdas[static_cast<std::size_t>(k - 1)], lambda_exact(k, n), 1e-10 * lambda_exact(k, n))
+          << "k = " << k << ", shift " << shift;
+    expect_pairs_good(p.M, s);
+  }
+  // Without the deflation the constant (lambda = 0) is the lowest.
+  LowestSettings plain;
+  plain.shift = -1.0;
+  EXPECT_LE(std::abs(lowest_eigenpairs(p.K, p.M, plain).lambdas.front()), 1e-8);
+}
+
 // The same problem on this task's communicator and on each rank alone (PETSC_COMM_SELF): the
 // eigenpairs agree, so a bank does not depend on how many ranks a task had.
 TEST(PetscEigen, SameResultsOnAnyNumberOfRanks) {

@@ -248,6 +248,16 @@ TEST(EllipsoidMesh, FlatEllipsoidCapsTheEdgeLength) {
   any.min_dihedral_deg = 0;
   const EllipsoidMesh m = mesh_ellipsoid({{1.0, 1.0, 0.1}, 0.5}, any);
   EXPECT_NEAR(m.quality.edge_length_m, 2 * 0.1 / 3, 1e-15);  // h capped: 3 edges through 2c
+  // The cap follows elements_through_thickness, and one element through the thickness is a mesh
+  // of fewer elements whose volume still converges with the curved faces (within 1 %).
+  EllipsoidMeshSettings one{{1.0, 1.0, 0.1}, 0.5};
+  one.elements_through_thickness = 1;
+  const EllipsoidMesh thin = mesh_ellipsoid(one, any);
+  EXPECT_NEAR(thin.quality.edge_length_m, 2 * 0.1, 1e-15);
+  EXPECT_LT(thin.quality.elements, m.quality.elements / 3);
+  EXPECT_NEAR(mesh_volume(thin, true) / ellipsoid_volume({1.0, 1.0, 0.1}), 1, 1e-2);
+  one.elements_through_thickness = 0;
+  EXPECT_THROW(mesh_ellipsoid(one, any), std::invalid_argument);
 }
 
 TEST(EllipsoidMesh, BadInputsAndFailedQualityAreReported) {
