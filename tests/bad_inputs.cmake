@@ -216,4 +216,6 @@ clatter_error_test(bad_modal_duplicate_sample 0 "patch.samples[1];the same ellip
 clatter_error_test(bad_modal_no_samples 0 "patch.samples = [];at least one ellipsoid" modal "--set=patch.samples=[]" -o out.h5)
 clatter_error_test(bad_modal_residual_limit 0 "solver.residual_limit = 1e-12;must exceed solver.tolerance"
                    modal --set solver.residual_limit=1e-12 -o out.h5)
+clatter_error_test(bad_modal_nev_per_shift 0 "solver.nev_per_shift = 8;at least 10"
+                   modal --set solver.nev_per_shift=8 -o out.h5)
 clatter_error_test(bad_modal_min_ratio_one_np2 2 "'patch.min_ratio' = '1';must be in (0, 1)" modal --set patch.min_ratio=1 -o out.h5)

@@ -92,6 +92,11 @@ model::ModalSolveSettings solve_settings(const io::Config& config) {
   solve.max_iterations = config.integer("solver.max_iterations");
   solve.nev_per_shift = config.integer("solver.nev_per_shift");
   // degenerate_gap keeps its default: no key sets it (it splits far below any mesh asymmetry).
+  // SLEPc 3.18's spectrum slicing refuses fewer than 10 eigenpairs per shift (EPSSetUp), which
+  // would fail every task after the sweep started.
+  if (solve.nev_per_shift != 0 && solve.nev_per_shift < 10)
+    throw InputError(fmt::format("solver.nev_per_shift = {}: spectrum slicing needs 0 (SLEPc's default) or at least 10",
+                                 solve.nev_per_shift));
   if (!(solve.residual_limit > solve.tolerance))
     throw InputError(fmt::format("solver.residual_limit = {} must exceed solver.tolerance = {}: the solver stops at "
                                  "its tolerance", solve.residual_limit, solve.tolerance));
