@@ -7,18 +7,12 @@
 #include <random>
 
 #include "kernels/modal/mode_basis.hpp"
+#include "tests/reference/random_orthogonal.hpp"
 
 namespace {
 using namespace clatter::kernels::modal;
 
-Eigen::MatrixXd random_orthogonal(int n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd a(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) a(i, j) = normal(gen);
-  return Eigen::HouseholderQR<Eigen::MatrixXd>(a).householderQ();
-}
+using clatter::reference::random_orthogonal;
 
 // A model problem: K = diag(lambdas) in an orthonormal basis E of R^n (M = I), U = E[:, cluster] S
 // for an arbitrary orthogonal S; G: fixed reference columns.

@@ -14,20 +14,14 @@
 
 #include "kernels/fem/ellipsoid_mesh.hpp"
 #include "kernels/modal/multiplets.hpp"
+#include "tests/reference/random_orthogonal.hpp"
 
 namespace {
 using namespace clatter::kernels;
 using modal::SymmetryKind;
 using Field = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
 
-Eigen::MatrixXd random_orthogonal(int n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd a(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) a(i, j) = normal(gen);
-  return Eigen::HouseholderQR<Eigen::MatrixXd>(a).householderQ();
-}
+using clatter::reference::random_orthogonal;
 
 Field rotation(int axis) {
   return [axis](const Eigen::Vector3d& x) { return Eigen::Vector3d::Unit(axis).cross(x); };
