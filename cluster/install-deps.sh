@@ -13,7 +13,7 @@ packages=(
   libhdf5-openmpi-dev libhdf5-dev
   libeigen3-dev libgsl-dev
   # PETSc/SLEPc (real, with MUMPS) for petsc/; TetGen for kernels/fem/ellipsoid_mesh.cpp; CGAL
-  # not used by the build yet
+  # (header-only) for the flat ellipsoids' mid-plane triangulation (kernels/fem/ellipse_triangulation.cpp)
   libpetsc-real3.18-dev libslepc-real3.18-dev libcgal-dev libtet1.5-dev
   # an optimized single-threaded BLAS/LAPACK behind MUMPS (through Debian's libblas.so.3
   # alternative): the reference BLAS factorizes a 35k-dof modal entry ~6x slower; serial, so

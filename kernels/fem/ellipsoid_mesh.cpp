@@ -74,13 +74,23 @@ std::vector<std::array<int, 3>> boundary_faces(const LinearMesh& m, std::size_t 
   for (const auto& f : candidates)
     if (count[key(f)] == 1) {
       for (int v : f)
-        if (static_cast<std::size_t>(v) >= n_surface_points) throw MeshError("TetGen put a Steiner point on the surface");
+        if (static_cast<std::size_t>(v) >= n_surface_points) throw MeshError("a boundary face has a vertex off the surface (a Steiner point of TetGen's)");
       boundary.push_back(f);
     }
   return boundary;
 }
 
+}  // namespace
+
 EllipsoidMesh quadratic_mesh(LinearMesh& m, const P3& r, std::size_t n_surface_points) {
+  return quadratic_mesh(m, n_surface_points, [&](int a, int b, bool on_surface) {
+    const P3 c{0.5 * (m.points[a][0] + m.points[b][0]), 0.5 * (m.points[a][1] + m.points[b][1]),
+               0.5 * (m.points[a][2] + m.points[b][2])};
+    return on_surface ? nearest_on_ellipsoid(r, c) : c;
+  });
+}
+
+EllipsoidMesh quadratic_mesh(LinearMesh& m, std::size_t n_surface_points, const MidNodePlacement& place) {
   for (auto& t : m.tets)
     if (orientation(m, t) < 0) std::swap(t[1], t[2]);
   const auto boundary = boundary_faces(m, n_surface_points);
@@ -91,10 +101,7 @@ EllipsoidMesh quadratic_mesh(LinearMesh& m, const P3& r, std::size_t n_surface_p
   std::unordered_map<long long, int> mid;  // numbered in order of first use: deterministic
   auto mid_node = [&](int a, int b) {
     const auto [it, inserted] = mid.try_emplace(edge_key(a, b), static_cast<int>(nodes.size()));
-    if (inserted) {
-      const P3 c{0.5 * (nodes[a][0] + nodes[b][0]), 0.5 * (nodes[a][1] + nodes[b][1]), 0.5 * (nodes[a][2] + nodes[b][2])};
-      nodes.push_back(on_surface.count(edge_key(a, b)) ? nearest_on_ellipsoid(r, c) : c);
-    }
+    if (inserted) nodes.push_back(place(a, b, on_surface.count(edge_key(a, b)) > 0));
     return it->second;
   };
   EllipsoidMesh out;
@@ -124,7 +131,6 @@ void check_bounds(const MeshQuality& q, const EllipsoidMeshBounds& b) {
   if (reason[0] != '\0') throw MeshError(reason);
 }
 
-}  // namespace
 
 EllipsoidMesh mesh_ellipsoid(const EllipsoidMeshSettings& s, const EllipsoidMeshBounds& bounds) {
   const P3& r = s.semi_axes_m;

@@ -61,6 +61,29 @@ class MeshError : public std::runtime_error {
 // non-positive axes, h or elements through the thickness, MeshError when TetGen fails or the mesh breaks `bounds`.
 EllipsoidMesh mesh_ellipsoid(const EllipsoidMeshSettings& settings, const EllipsoidMeshBounds& bounds = {});
 
+// A flat ellipsoid (the smallest semi-axis a a fraction of the middle one) in layers: its mid-plane
+// ellipse triangulated (kernels/fem/ellipse_triangulation.hpp) with edges of edge_length_m in the
+// bulk, graded to rim_edge_fraction of that at the rim; each triangle extruded through the local
+// thickness 2 a sqrt(1 - rho^2) in `layers` prisms of 3 tetrahedra (the diagonals chosen by node
+// number, so neighbours agree), the columns collapsing to one node on the rim. TetGen's isotropic
+// fill needs h <= 2a / N everywhere and folds the thin rim below N = 3; here the in-plane h is
+// free of the thickness, which quadratic elements resolve in one or two layers (docs/modal.md
+// "Thin entries"). Only the Jacobian bound applies: the elements are flat on purpose.
+struct LayeredMeshSettings {
+  std::array<double, 3> semi_axes_m{0.1, 1, 1};
+  double edge_length_m = 0.25;       // in-plane h in the bulk
+  int layers = 2;                    // elements through the thickness
+  // The rim: the thickness a sqrt(1 - rho^2) has infinite slope there, and an isotropic grading
+  // that resolves it costs most of the mesh. A band of rim_rings rings instead, at depths 1 - rho
+  // halving toward the rim, spaced rim_spacing_fraction h along it, the deepest where the rings'
+  // radial step (along b) equals that spacing; inside it, h grows from that spacing by
+  // rim_grading per unit distance (docs/modal.md "Thin entries" measures them against TetGen's).
+  int rim_rings = 6;
+  double rim_spacing_fraction = 0.5;
+  double rim_grading = 0.3;
+};
+EllipsoidMesh mesh_layered_ellipsoid(const LayeredMeshSettings& settings, const EllipsoidMeshBounds& bounds = {});
+
 // The closed surface triangulation handed to TetGen (vertices on the ellipsoid, faces outward):
 // exposed for the tests.
 struct SurfaceTriangulation {

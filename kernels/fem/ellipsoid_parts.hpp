@@ -1,10 +1,12 @@
 #pragma once
 // The ellipsoid mesher's parts that do not see TetGen (internal to kernels/fem/ellipsoid_*.cpp).
 #include <array>
+#include <functional>
 #include <set>
 #include <vector>
 
 #include "kernels/fem/ellipsoid_mesh.hpp"
+#include "kernels/fem/tetgen_fill.hpp"
 
 namespace clatter::kernels::fem {
 
@@ -56,5 +58,22 @@ struct MeshRepairs {
 // `inner`: the points handed to TetGen after the surface's (the mesh's nodes from n_surface on).
 bool repair_mesh(const EllipsoidMesh& mesh, const EdgeRule& rule, const EllipsoidMeshBounds& bounds,
                  const std::vector<std::array<double, 3>>& inner, SurfaceTriangulation& surface, MeshRepairs& repairs);
+
+}  // namespace clatter::kernels::fem
+
+namespace clatter::kernels::fem {
+
+// The 10-node mesh of a linear one whose first n_surface_points points are its surface vertices
+// (on the ellipsoid): tetrahedra turned positive, the boundary found (faces met once, outward),
+// mid-nodes at straight midpoints inside and on the ellipsoid (nearest point) on the boundary. Both
+// meshers (TetGen's fill, ellipsoid_mesh.cpp; the layers of a flat body, layered_ellipsoid.cpp)
+// end here.
+EllipsoidMesh quadratic_mesh(LinearMesh& linear, const std::array<double, 3>& semi_axes_m, std::size_t n_surface_points);
+// The same with the mid-node of edge a-b (vertex indices) where `place` puts it.
+using MidNodePlacement = std::function<std::array<double, 3>(int a, int b, bool on_surface)>;
+EllipsoidMesh quadratic_mesh(LinearMesh& linear, std::size_t n_surface_points, const MidNodePlacement& place);
+
+// Throws MeshError naming the first bound the mesh's quality breaks.
+void check_bounds(const MeshQuality& quality, const EllipsoidMeshBounds& bounds);
 
 }  // namespace clatter::kernels::fem

@@ -277,3 +277,51 @@ TEST(EllipsoidMesh, BadInputsAndFailedQualityAreReported) {
 }
 
 }  // namespace
+
+// The layered mesher of flat ellipsoids (mesh_layered_ellipsoid): closed, outward and on the
+// surface like TetGen's meshes, conforming (every interior face in exactly two elements, which
+// the closed boundary above implies), the same mesh for the same input, and its volume converging
+// to 4/3 pi a b c. The rim is where a layered mesh is weakest (the columns collapse there and the
+// profile a sqrt(1 - rho^2) has infinite slope), so the error is measured at 1:33 and must fall
+// with every halving of h, to below 0.2 %.
+TEST(LayeredEllipsoidMesh, ClosedOnTheSurfaceAndVolumeConverges) {
+  for (const Axes ratio : {Axes{0.03, 1.0, 1.0}, Axes{0.03, 0.3, 1.0}, Axes{1.0, 0.05, 0.4}}) {
+    const Axes r = unit_axes(ratio);
+    double previous = HUGE_VAL;
+    for (const double h : {0.2, 0.1, 0.05}) {
+      LayeredMeshSettings s;
+      s.semi_axes_m = r;
+      s.edge_length_m = h;
+      s.layers = 2;
+      const EllipsoidMesh m = mesh_layered_ellipsoid(s);
+      expect_closed_outward_on_surface(m, r);
+      EXPECT_GT(m.quality.min_jacobian_ratio, 0.2);
+      const double error = std::abs(mesh_volume(m, true) / ellipsoid_volume(r) - 1);
+      std::printf("layered %.3g:%.3g:%.3g h %.3f: %lld elements, %lld dofs, volume error %.2e, Jacobian ratio %.3f\n",
+                  ratio[0], ratio[1], ratio[2], h, m.quality.elements, m.quality.dofs, error, m.quality.min_jacobian_ratio);
+      EXPECT_LT(error, previous);
+      previous = error;
+    }
+    EXPECT_LT(previous, 2e-3);
+  }
+}
+
+TEST(LayeredEllipsoidMesh, SameInputGivesTheSameMeshAndLayersCountThroughTheThickness) {
+  LayeredMeshSettings s;
+  s.semi_axes_m = unit_axes({0.05, 0.5, 1.0});
+  s.edge_length_m = 0.1;
+  const EllipsoidMesh a = mesh_layered_ellipsoid(s), b = mesh_layered_ellipsoid(s);
+  EXPECT_EQ(a.mesh.elements, b.mesh.elements);
+  EXPECT_EQ((a.mesh.nodes_m - b.mesh.nodes_m).cwiseAbs().maxCoeff(), 0.0);
+  // One layer against three: the same surface, three times the prisms (fewer at the rim, where
+  // collapsed prisms make fewer tetrahedra), and the vertex count of the columns' inner nodes.
+  s.layers = 1;
+  const EllipsoidMesh one = mesh_layered_ellipsoid(s);
+  s.layers = 3;
+  const EllipsoidMesh three = mesh_layered_ellipsoid(s);
+  EXPECT_EQ(one.boundary.size(), three.boundary.size());
+  EXPECT_GT(three.quality.elements, 2.5 * static_cast<double>(one.quality.elements));
+  EXPECT_LE(three.quality.elements, 3 * one.quality.elements);
+  s.layers = 0;
+  EXPECT_THROW(mesh_layered_ellipsoid(s), std::invalid_argument);
+}
