@@ -318,6 +318,9 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   write_attribute<double>(file, "/settings", "coarse_edge_m", h.coarse_edge_m);
   write_attribute<double>(file, "/settings", "elements_through_thickness", h.elements_through_thickness);
   write_attribute<double>(file, "/settings", "coarse_elements_through_thickness", h.coarse_elements_through_thickness);
+  write_attribute<double>(file, "/settings", "layered_below_ratio", h.layered_below_ratio);
+  write_attribute<std::int32_t>(file, "/settings", "layers", h.layers);
+  write_attribute<std::int32_t>(file, "/settings", "coarse_layers", h.coarse_layers);
   write_attribute<double>(file, "/settings", "solver_tolerance", h.solve.tolerance);
   write_attribute<double>(file, "/settings", "residual_limit", h.solve.residual_limit);
   write_attribute<std::int32_t>(file, "/settings", "ranks_per_task", h.ranks_per_task);
@@ -358,6 +361,13 @@ model::ModalBank read_modal_bank(const std::string& path) {
   for (auto [name, value] : {std::pair{"elements_through_thickness", &h.elements_through_thickness},
                              std::pair{"coarse_elements_through_thickness", &h.coarse_elements_through_thickness}})
     *value = has_attribute(file, "/settings", name) ? read_attribute<double>(file, "/settings", name) : 3.0;
+  // Banks before the layered mesher meshed every entry by TetGen's fill.
+  h.layered_below_ratio = has_attribute(file, "/settings", "layered_below_ratio")
+                              ? read_attribute<double>(file, "/settings", "layered_below_ratio") : 0.0;
+  if (h.layered_below_ratio > 0) {
+    h.layers = read_attribute<std::int32_t>(file, "/settings", "layers");
+    h.coarse_layers = read_attribute<std::int32_t>(file, "/settings", "coarse_layers");
+  }
   h.solve.tolerance = read_attribute<double>(file, "/settings", "solver_tolerance");
   h.solve.residual_limit = read_attribute<double>(file, "/settings", "residual_limit");
   h.ranks_per_task = read_attribute<std::int32_t>(file, "/settings", "ranks_per_task");

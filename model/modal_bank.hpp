@@ -190,6 +190,11 @@ struct ModalBankHeader {
   double coarse_edge_m = 0;            // h of the pre-solve that estimates f_1
   double elements_through_thickness = 0;         // h <= 2 a / this (a the smallest semi-axis), fine mesh
   double coarse_elements_through_thickness = 0;  // the same cap on the pre-solve's mesh
+  // Entries whose a / b is below this are meshed in layers (kernels/fem mesh_layered_ellipsoid,
+  // in-plane h from the bending wavelength): `layers` through the thickness, `coarse_layers` on
+  // the pre-solve's mesh; 0: none.
+  double layered_below_ratio = 0;
+  std::int32_t layers = 2, coarse_layers = 1;
   std::int32_t ranks_per_task = 0;     // ranks that solved each entry (shapes agree across it to ~1e-8)
   std::string solver_libraries;        // e.g. "PETSc 3.18.5, SLEPc 3.18.2": the last bits depend on them
   TransferSettings transfer;

@@ -33,10 +33,10 @@ double since(clock_type::time_point t0) { return std::chrono::duration<double>(c
 
 // Every rank meshes alike (TetGen is deterministic), so a failure is the same everywhere.
 kernels::fem::EllipsoidMesh mesh_or_fail(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m,
-                                         double elements_through_thickness) {
+                                         double elements_through_thickness, MeshFor purpose = MeshFor::entry) {
   Stage stage("mesh");
   try {
-    return mesh_entry(spec, axes, h_m, elements_through_thickness);
+    return mesh_entry(spec, axes, h_m, elements_through_thickness, purpose);
   } catch (const std::exception& e) {
     throw TaskFailure(e.what());
   }
@@ -99,11 +99,34 @@ void store_modes(MPI_Comm group, const ModeSet& modes, const kernels::fem::Tet10
   if (root) store_multiplets(symmetry, entry);
 }
 
+bool layered_entry(const model::ModalBankHeader& header, const std::array<double, 3>& axes) {
+  return axes[0] < header.layered_below_ratio * axes[1];
+}
+
+double layered_edge_length_m(const model::ModalBankHeader& header, const std::array<double, 3>& axes, double h_m) {
+  // The frequency h_m resolves (modal_edge_length_m inverted), and the Kirchhoff bending
+  // wavelength there of a plate as thick as the entry's middle, T = 2a:
+  // lambda_b = 2 pi (D / (rho T))^(1/4) / sqrt(omega), D / (rho T) = c_p^2 T^2 / 12.
+  const auto& m = header.material;
+  const double f_hz = m.shear_speed_m_s() / (h_m * header.elements_per_wavelength);
+  const double plate_speed_m_s = std::sqrt(m.youngs_pa / (m.rho_kg_m3 * (1 - m.poisson * m.poisson)));
+  const double bending_wavelength_m = std::sqrt(2 * std::numbers::pi * plate_speed_m_s * 2 * axes[0] / (std::sqrt(12.0) * f_hz));
+  return std::min(h_m, bending_wavelength_m / (kBendingOverShear * header.elements_per_wavelength));
+}
+
 kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m,
-                                       double elements_through_thickness) {
+                                       double elements_through_thickness, MeshFor purpose) {
   std::string reasons;
+  const bool layered = layered_entry(spec.header, axes);
   for (double factor : {1.0, 0.7, 0.5}) {
     try {
+      if (layered) {
+        kernels::fem::LayeredMeshSettings settings;
+        settings.semi_axes_m = axes;
+        settings.edge_length_m = factor * (purpose == MeshFor::entry ? layered_edge_length_m(spec.header, axes, h_m) : h_m);
+        settings.layers = purpose == MeshFor::entry ? spec.header.layers : spec.header.coarse_layers;
+        return kernels::fem::mesh_layered_ellipsoid(settings, spec.bounds);
+      }
       kernels::fem::EllipsoidMeshSettings settings{axes, factor * h_m};
       settings.elements_through_thickness = elements_through_thickness / factor;  // the cap may fix h
       settings.spacing_per_curvature_radius *= factor;
@@ -126,7 +149,8 @@ double modal_edge_length_m(const ModalSpec& spec, double f_max_hz) {
 FirstModeEstimate estimate_first_mode(MPI_Comm comm, const ModalSpec& spec, const std::array<double, 3>& axes) {
   Stage stage("estimate");
   const auto& material = spec.header.material;
-  auto coarse = mesh_or_fail(spec, axes, spec.header.coarse_edge_m, spec.header.coarse_elements_through_thickness);
+  auto coarse = mesh_or_fail(spec, axes, spec.header.coarse_edge_m, spec.header.coarse_elements_through_thickness,
+                             MeshFor::estimate);
   FemModel model = assemble_fem(comm, coarse.mesh, material);
   // A sphere of radius c rings at omega c / c_s ~ 2.5 (Lamb's n = 2); a plate's or a rod's first
   // mode bends, at omega ~ c_s x thickness / length^2: a / c times the sphere's.

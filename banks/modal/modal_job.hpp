@@ -35,8 +35,22 @@ model::ModalBank merge_modal_results(const ModalSpec& spec, const std::string& r
 // the surface spacing per curvature radius (a finer surface resolves the curvature that folded);
 // throws a MeshError with every attempt's reason. Deterministic, so every rank of a group gets
 // the same mesh.
+// Flat entries (a < header.layered_below_ratio x b) are meshed in layers instead
+// (kernels::fem::mesh_layered_ellipsoid): header.layers (coarse_layers) through the thickness, and
+// in the plane the smaller of h_m and layered_edge_length_m for an entry, h_m itself for the
+// pre-solve (its first mode, a bending wave as long as the body, needs no more).
+enum class MeshFor { entry, estimate };
 kernels::fem::EllipsoidMesh mesh_entry(const ModalSpec& spec, const std::array<double, 3>& axes, double h_m,
-                                       double elements_through_thickness);
+                                       double elements_through_thickness, MeshFor purpose = MeshFor::entry);
+bool layered_entry(const model::ModalBankHeader& header, const std::array<double, 3>& axes);
+
+// The in-plane h of a layered entry: the bending wavelength, at the frequency h_m resolves (h_m
+// elements_per_wavelength = c_s / f), of a plate 2a thick, over kBendingOverShear x
+// elements_per_wavelength; at most h_m. Bending waves need more elements than shear waves for the
+// same error: at 3 per bending wavelength the 10th mode of a 0.03:1:1 entry is 8.5 % high, at 8
+// within 0.5 % (docs/modal.md "Thin entries", the sequence).
+inline constexpr double kBendingOverShear = 8.0 / 3;
+double layered_edge_length_m(const model::ModalBankHeader& header, const std::array<double, 3>& axes, double h_m);
 
 // The pre-solve that estimates f_1 (stage `estimate`, docs/modal.md): the ellipsoid meshed at
 // header.coarse_edge_m (mesh_entry; a failure is the task's TaskFailure), K and M assembled on

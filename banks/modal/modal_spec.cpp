@@ -60,6 +60,11 @@ const io::Schema& modal_schema() {
           {"mesh.elements_through_thickness", 3.0, "and h at most 2 a / this (a the smallest semi-axis; 10-node "
            "tetrahedra hold bending exactly)", {0.5, 20.0}},
           {"mesh.coarse_elements_through_thickness", 3.0, "the same cap on the pre-solve's mesh", {0.5, 20.0}},
+          {"mesh.layered_below_ratio", 0.2, "entries whose a / b is below this are meshed in layers through the "
+           "thickness, with the in-plane h from the bending wavelength at f_max (docs/modal.md \"Thin entries\"); 0: "
+           "every entry by TetGen's fill", {0.0, 1.0}},
+          {"mesh.layers", std::int64_t{2}, "quadratic elements through the thickness of a layered entry", {1, 20}},
+          {"mesh.coarse_layers", std::int64_t{1}, "the same on the pre-solve's mesh", {1, 20}},
           {"mesh.max_radius_edge", 3.0, "largest radius-edge ratio a mesh may have", {1.0, 100.0}},
           {"mesh.min_dihedral_deg", 5.0, "smallest dihedral angle a mesh may have [deg]", {0.0, 60.0}},
           {"mesh.min_jacobian_ratio", 0.2, "smallest min/max det J within a curved element", {0.0, 1.0, true}},
@@ -137,6 +142,9 @@ ModalSpec make_modal_spec(const io::Config& config) {
   h.coarse_edge_m = config.real("mesh.coarse_edge_m");
   h.elements_through_thickness = config.real("mesh.elements_through_thickness");
   h.coarse_elements_through_thickness = config.real("mesh.coarse_elements_through_thickness");
+  h.layered_below_ratio = config.real("mesh.layered_below_ratio");
+  h.layers = static_cast<std::int32_t>(config.integer("mesh.layers"));
+  h.coarse_layers = static_cast<std::int32_t>(config.integer("mesh.coarse_layers"));
   h.transfer.method = "equivalent sources (monopoles on a layer under the surface, 8 parity classes), multipole "
                       "about the centre";
   read_transfer_keys(config, h.transfer);
