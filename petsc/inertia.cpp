@@ -26,9 +26,11 @@ std::string format_interval(double lo, double hi) {
 
 }  // namespace
 
-PetscInt eigenvalues_below(const Matrix& K, const Matrix& M, double sigma, FactorStats* stats) {
-  if (!(K.layout() == M.layout())) throw std::invalid_argument("eigenvalues_below: K and M have different row layouts");
-  Factorisation f;
+namespace {
+
+// K - sigma M factorised by MUMPS' LDL^T into f.
+void factorise(const Matrix& K, const Matrix& M, double sigma, Factorisation& f, FactorStats& stats) {
+  if (!(K.layout() == M.layout())) throw std::invalid_argument("K and M have different row layouts");
   check(MatDuplicate(K.get(), MAT_COPY_VALUES, &f.shifted), "MatDuplicate");
   const MatStructure structure =
       K.pattern_fingerprint() == M.pattern_fingerprint() ? SAME_NONZERO_PATTERN : DIFFERENT_NONZERO_PATTERN;
@@ -38,25 +40,47 @@ PetscInt eigenvalues_below(const Matrix& K, const Matrix& M, double sigma, Facto
   check(MatMumpsSetIcntl(f.factor, 13, 1), "MatMumpsSetIcntl(13)");
   MatFactorInfo info;
   check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
-  FactorStats local;
   {
     Stage stage("factor symbolic");
     check(MatCholeskyFactorSymbolic(f.factor, f.shifted, nullptr, &info), "MatCholeskyFactorSymbolic");
-    local.symbolic_s = stage.elapsed_s();
+    stats.symbolic_s = stage.elapsed_s();
   }
   {
     Stage stage("factor numeric");
     check(MatCholeskyFactorNumeric(f.factor, f.shifted, &info), "MatCholeskyFactorNumeric");
-    local.numeric_s = stage.elapsed_s();
+    stats.numeric_s = stage.elapsed_s();
   }
+  check(MatMumpsGetInfog(f.factor, 21, &stats.memory_max_mb), "MatMumpsGetInfog(21)");
+  check(MatMumpsGetInfog(f.factor, 22, &stats.memory_sum_mb), "MatMumpsGetInfog(22)");
+}
+
+}  // namespace
+
+PetscInt eigenvalues_below(const Matrix& K, const Matrix& M, double sigma, FactorStats* stats) {
+  Factorisation f;
+  FactorStats local;
+  factorise(K, M, sigma, f, local);
   // Zero and positive counts would need MUMPS' null-pivot detection (ICNTL(24)), which changes the
   // factorisation; the negative count is all Sylvester needs.
   PetscInt below = 0;
   check(MatGetInertia(f.factor, &below, nullptr, nullptr), "MatGetInertia");
-  check(MatMumpsGetInfog(f.factor, 21, &local.memory_max_mb), "MatMumpsGetInfog(21)");
-  check(MatMumpsGetInfog(f.factor, 22, &local.memory_sum_mb), "MatMumpsGetInfog(22)");
   if (stats) *stats = local;
   return below;
+}
+
+std::vector<Vector> shift_invert(const Matrix& K, const Matrix& M, double sigma, std::span<const Vector> X) {
+  Factorisation f;
+  FactorStats stats;
+  factorise(K, M, sigma, f, stats);
+  Stage stage("factor solve");
+  std::vector<Vector> out;
+  for (const Vector& x : X) {
+    Vector mx(M.layout()), y(M.layout());
+    check(MatMult(M.get(), x.get(), mx.get()), "MatMult");
+    check(MatSolve(f.factor, mx.get(), y.get()), "MatSolve");
+    out.push_back(std::move(y));
+  }
+  return out;
 }
 
 CountMismatch::CountMismatch(PetscInt found, PetscInt expected, double lambda_lo, double lambda_hi)

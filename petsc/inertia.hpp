@@ -1,9 +1,12 @@
 #pragma once
 #include <petscsys.h>
 
+#include <span>
 #include <stdexcept>
+#include <vector>
 
 #include "petsc/matrix.hpp"
+#include "petsc/vector.hpp"
 
 namespace clatter::petsc {
 
@@ -19,6 +22,11 @@ struct FactorStats {
 // in parallel too); stages "factor symbolic" and "factor numeric". Sigma should not be an
 // eigenvalue (a singular K - sigma M counts its zero pivot either way).
 PetscInt eigenvalues_below(const Matrix& K, const Matrix& M, double sigma, FactorStats* stats = nullptr);
+
+// Inverse iteration's step: (K - sigma M)^-1 M x for each x, from one MUMPS LDL^T factorisation of
+// K - sigma M (sigma not an eigenvalue; the closer to the wanted ones, the more one step removes of
+// the others). Collective on K's communicator; stages as above and "factor solve".
+std::vector<Vector> shift_invert(const Matrix& K, const Matrix& M, double sigma, std::span<const Vector> X);
 
 // The eigen-solve found a different number of eigenvalues in [lambda_lo, lambda_hi] than the
 // inertia counts: an eigenvalue was lost or duplicated.

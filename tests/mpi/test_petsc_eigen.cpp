@@ -14,6 +14,7 @@
 #include "core/stage_log.hpp"
 #include "petsc/eigen.hpp"
 #include "petsc/error.hpp"
+#include "petsc/inertia.hpp"
 
 namespace {
 using namespace clatter::petsc;
@@ -91,6 +92,38 @@ TEST(PetscEigen, DirichletLaplacianEveryEigenvalueInTheInterval) {
   expect_pairs_good(p.M, s);
   EXPECT_NE(s.options.find("-st_mat_mumps_icntl_13 1"), std::string::npos);
   EXPECT_GE(s.stats.numeric_factorisations, 1);
+}
+
+// One step of inverse iteration against the closed form: the discrete Dirichlet eigenvectors are
+// the sines v_k(x_i) = sin(k pi x_i), so (K - sigma M)^-1 M (v_2 + 0.1 v_3) = v_2 / (lambda_2 -
+// sigma) + 0.1 v_3 / (lambda_3 - sigma): v_3's part shrinks by (lambda_2 - sigma) / (lambda_3 - sigma).
+TEST(PetscEigen, ShiftInvertStepIsTheClosedForm) {
+  const int n = 200;
+  Problem p = laplacian(MPI_COMM_WORLD, n, true);
+  auto sines = [&](double c2, double c3) {
+    std::vector<double> owned;
+    for (PetscInt row = p.layout.begin(); row < p.layout.end(); ++row) {
+      const double x = static_cast<double>(row + 1) / n;
+      owned.push_back(c2 * std::sin(2 * std::numbers::pi * x) + c3 * std::sin(3 * std::numbers::pi * x));
+    }
+    return Vector(p.layout, owned);
+  };
+  const double l1 = lambda_exact(1, n), l2 = lambda_exact(2, n), l3 = lambda_exact(3, n);
+  const double sigma = l2 - 0.01 * (l2 - l1);
+  std::vector<Vector> x;
+  x.push_back(sines(1, 0.1));
+  const auto y = shift_invert(p.K, p.M, sigma, x);
+  ASSERT_EQ(y.size(), 1u);
+  const Vector expected = sines(1 / (l2 - sigma), 0.1 / (l3 - sigma));
+  const auto got = y[0].owned(), want = expected.owned();
+  double error = 0, scale = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    error = std::max(error, std::abs(got[i] - want[i]));
+    scale = std::max(scale, std::abs(want[i]));
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &error, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  EXPECT_LT(error, 1e-9 * scale);
 }
 
 TEST(PetscEigen, DoubleEigenvaluesKeepBothMembers) {
