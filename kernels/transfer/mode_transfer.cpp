@@ -233,6 +233,14 @@ Multipole expansion_of(double k, const SourceFit& fit, const SourceLayout& layou
   return m;
 }
 
+// The node spacing of the data as the layouts take it (their sources within 2 and their fit points
+// within 1/2 of it), measured on default-bank entries (docs/transfer.md "Cost"): the layer under a
+// needle's tips needs it finer (0.099:0.099:0.99's first mode: residual 3.6 % as is, 0.81 % at
+// 0.7, 1.2 s), the rim layout of a flat body coarser (0.095:0.300:0.949: residuals within 1.2e-3
+// at 2, 8x faster than as is, 15 s per mode).
+constexpr double kLayerDataScale = 0.7;
+constexpr double kRimDataScale = 2;
+
 }  // namespace
 
 SurfaceDisplacement mesh_displacement(const std::array<double, 3>& axes_m, std::span<const std::array<double, 3>> nodes_m,
@@ -278,13 +286,13 @@ ModeTransfer solve_mode_transfer(const std::array<double, 3>& axes_m, double ome
   // A flat body's rim is sharper than any layer following the normal can resolve: the rim-graded
   // layout is built for its depth from the start, and a deeper or shallower copy would not help.
   if (axes_m[1] >= settings.rim_aspect * axes_m[0]) {
-    try_grids(make_rim_grids(axes_m, k, data_spacing_m, settings.rim_inner_fraction, settings.rim_spacing_per_depth,
-                             settings),
+    try_grids(make_rim_grids(axes_m, k, kRimDataScale * data_spacing_m, settings.rim_inner_fraction,
+                             settings.rim_spacing_per_depth, settings),
               1 - settings.rim_inner_fraction);
     return best;
   }
   for (double depth : settings.source_depths) {
-    const double residual = try_grids(make_grids(axes_m, k, data_spacing_m, depth, settings), depth);
+    const double residual = try_grids(make_grids(axes_m, k, kLayerDataScale * data_spacing_m, depth, settings), depth);
     // Judged against the surface motion: a mode whose g is mostly mesh noise is not refitted.
     if (best.boundary_residual * best.normal_fraction <= settings.residual_target) break;
     // A layer depth that did not halve the residual says the floor is the data's (C0 kinks of
