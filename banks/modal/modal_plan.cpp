@@ -13,6 +13,8 @@
 #include "banks/modal/modal_job.hpp"
 #include "banks/modal/modal_spec.hpp"
 #include "cli/run_options.hpp"
+#include "kernels/transfer/mode_transfer.hpp"
+#include "kernels/transfer/surface_interpolation.hpp"
 #include "petsc/inertia.hpp"
 
 namespace clatter::jobs {
@@ -32,17 +34,32 @@ constexpr double kMemoryExponent = 4.0 / 3.0;
 // Measured (docs/benchmarks.md "Modal bank"): 2 ranks per task run the default sphere entry 1.23x
 // faster than 1 (the slicing's triangular solves scale poorly), 2^0.3 = 1.23.
 constexpr double kGroupSpeedupExponent = 0.3;
-// The transfer's time per mode grows like (k_max c)^4.5 (sources ~ (kc)^2 whose Green's functions
-// and QR cost (kc)^4 to (kc)^6; docs/benchmarks.md "Acoustic transfer"), spread evenly over a group.
-constexpr double kTransferExponent = 4.5;
-
-// k c at the top of an entry's range: what sizes its transfer.
-double top_kc(const ModalSpec& spec, double f_max_hz, const std::array<double, 3>& axes) {
-  return 2 * std::numbers::pi * f_max_hz * axes[2] / spec.header.transfer.sound_speed_m_s;
+// The transfer's time scales with the work of its layouts' fits (kernels/transfer layout_size:
+// fit points x sources^2, set by the air wavelength, the mesh's spacing and the shape's layout),
+// averaged over the entry's modes, whose density grows like f^2 on a bulky entry (Weyl) and like
+// f on a flat one (a plate's); spread evenly over a group.
+double transfer_work(const ModalSpec& spec, const std::array<double, 3>& axes, double f1_hz, double f_max_hz,
+                     const kernels::fem::EllipsoidMesh& mesh) {
+  std::vector<std::array<double, 3>> nodes;
+  for (Eigen::Index v = 0; v < mesh.mesh.nodes_m.cols(); ++v)
+    nodes.push_back({mesh.mesh.nodes_m(0, v), mesh.mesh.nodes_m(1, v), mesh.mesh.nodes_m(2, v)});
+  std::vector<std::array<std::int32_t, 6>> faces;
+  for (const auto& f : mesh.boundary) faces.push_back({f[0], f[1], f[2], f[3], f[4], f[5]});
+  const double spacing_m = kernels::transfer::surface_node_spacing_m(nodes, faces);
+  const double density_power = layered_entry(spec.header, axes) ? 1 : 2;
+  double work = 0, weight = 0;
+  constexpr int kSamples = 8;
+  for (int i = 0; i < kSamples; ++i) {
+    const double f = f1_hz + (f_max_hz - f1_hz) * (i + 0.5) / kSamples, w = std::pow(f, density_power);
+    work += w * kernels::transfer::layout_size(axes, 2 * std::numbers::pi * f, spacing_m, spec.header.transfer).work;
+    weight += w;
+  }
+  return work / weight;
 }
 
 struct EntryPlan {
   double f1_hz = 0, k = 0, h_m = 0;
+  double transfer_work = 0;  // per mode (transfer_work above)
   long long dofs = 0, coarse_dofs = 0, modes = 0;
   double task_s = 0, memory_mb = 0;
   std::string failure;  // the mesh or pre-solve failed: the task will fail the same way
@@ -58,7 +75,9 @@ EntryPlan plan_entry(const ModalSpec& spec, std::size_t i) {
     p.modes = petsc::eigenvalues_below(coarse.model.K, coarse.model.M, p.k * p.k * coarse.lambda1 * 1.0001) - 6;
     p.coarse_dofs = coarse.mesh.quality.dofs;
     p.h_m = modal_edge_length_m(spec, p.k * p.f1_hz);
-    p.dofs = mesh_entry(spec, axes, p.h_m, spec.header.elements_through_thickness).quality.dofs;
+    const auto mesh = mesh_entry(spec, axes, p.h_m, spec.header.elements_through_thickness);
+    p.dofs = mesh.quality.dofs;
+    p.transfer_work = transfer_work(spec, axes, p.f1_hz, p.k * p.f1_hz, mesh);
   } catch (const std::exception& e) {
     p.failure = e.what();
   }
@@ -84,7 +103,6 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
                cal_setup_s = entry.cost.mesh_s + entry.cost.assembly_s,
                cal_solve_s = entry.cost.total_s - cal_transfer_s - cal_estimate_s - cal_setup_s;
   const double cal_modes = static_cast<double>(std::max<std::size_t>(entry.modes(), 1));
-  const double cal_kc = top_kc(spec, entries[cal].k * entries[cal].f1_hz, spec.samples_m[cal]);
   // The coarse mesh undercounts the top of the range (its frequencies are high): scaled by what
   // the calibration entry's fine solve found against its coarse count.
   const double count_scale = cal_modes / static_cast<double>(std::max<long long>(entries[cal].modes, 1));
@@ -101,12 +119,12 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     p.modes = std::llround(static_cast<double>(p.modes) * count_scale);
     const double dofs_ratio = static_cast<double>(p.dofs) / cal_dofs;
     const double mode_ratio = static_cast<double>(p.modes) / cal_modes;
-    const double kc_ratio = top_kc(spec, p.k * p.f1_hz, spec.samples_m[static_cast<std::size_t>(&p - entries.data())]) / cal_kc;
+    const double work_ratio = p.transfer_work / entries[cal].transfer_work;
     const double coarse_ratio = static_cast<double>(p.coarse_dofs) / static_cast<double>(entries[cal].coarse_dofs);
     const double fem_s = cal_estimate_s * std::pow(coarse_ratio, kEstimateExponent) + cal_setup_s * dofs_ratio +
                          cal_solve_s * std::pow(dofs_ratio, kDofsExponent) * (1 + static_cast<double>(p.modes) / kModesPerFixedShare) /
                              (1 + cal_modes / kModesPerFixedShare);
-    p.task_s = fem_s / group_speedup + cal_transfer_s * mode_ratio * std::pow(kc_ratio, kTransferExponent) / o.ranks_per_task;
+    p.task_s = fem_s / group_speedup + cal_transfer_s * mode_ratio * work_ratio / o.ranks_per_task;
     p.memory_mb = cal_memory * std::pow(dofs_ratio, kMemoryExponent) / o.ranks_per_task;
     e.task_s.push_back(p.task_s);
     core_s += p.task_s * o.ranks_per_task;
@@ -125,10 +143,10 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
                           presolve_s);
   e.report += fmt::format("  calibration: {} solved here in {:.1f} s + {:.1f} s transfer: {} modes, {} dofs, {:.0f} MB MUMPS "
                           "factors; time ~ (coarse dofs^{} + dofs + dofs^{} (1 + modes/{})) / ranks_per_task^{} + "
-                          "modes x (k c)^{} / ranks_per_task\n",
+                          "modes x its layouts' work (fit points x sources^2) / ranks_per_task\n",
                           tasks[cal].name, entry.cost.total_s - cal_transfer_s, cal_transfer_s, entry.modes(),
                           entry.mesh.dofs, cal_memory, kEstimateExponent, kDofsExponent, kModesPerFixedShare,
-                          kGroupSpeedupExponent, kTransferExponent);
+                          kGroupSpeedupExponent);
   e.report += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}: {:.2f} core-hours\n",
                           o.ranks, e.nodes, cores, groups, o.ranks_per_task, core_s / 3600);
   e.report += fmt::format("  predicted:   {} wall (tasks handed out in order); largest MUMPS factors per rank ~{:.0f} MB; time "

@@ -241,7 +241,26 @@ Multipole expansion_of(double k, const SourceFit& fit, const SourceLayout& layou
 constexpr double kLayerDataScale = 0.7;
 constexpr double kRimDataScale = 2;
 
+// The grids of the first attempt (solve_mode_transfer's order).
+Grids first_grids(const std::array<double, 3>& axes_m, double k, double data_spacing_m, const TransferSettings& settings) {
+  if (axes_m[1] >= settings.rim_aspect * axes_m[0])
+    return make_rim_grids(axes_m, k, kRimDataScale * data_spacing_m, settings.rim_inner_fraction,
+                          settings.rim_spacing_per_depth, settings);
+  return make_grids(axes_m, k, kLayerDataScale * data_spacing_m, settings.source_depths.front(), settings);
+}
+
 }  // namespace
+
+LayoutSize layout_size(const std::array<double, 3>& axes_m, double omega_rad_s, double data_spacing_m,
+                       const TransferSettings& settings) {
+  const Grids g = first_grids(axes_m, omega_rad_s / settings.sound_speed_m_s, data_spacing_m, settings);
+  LayoutSize s;
+  s.sources = 8 * static_cast<long long>(g.layout.sources.size());
+  s.fit_points = 8 * static_cast<long long>(g.fit.size());
+  const double n = static_cast<double>(g.layout.sources.size()), m = static_cast<double>(g.fit.size());
+  s.work = m * n * (n + 50);
+  return s;
+}
 
 SurfaceDisplacement mesh_displacement(const std::array<double, 3>& axes_m, std::span<const std::array<double, 3>> nodes_m,
                                       std::span<const std::array<std::int32_t, 6>> faces, std::span<const double> shape) {

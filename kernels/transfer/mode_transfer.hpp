@@ -57,6 +57,17 @@ struct ModeTransfer {
   int sources = 0, fit_points = 0;  // whole surface (8 octants)
 };
 
+// The first attempt's layout at omega, without a fit: its sources and fit points (whole surface),
+// and the work of its fit in units of one complex multiply-add, fit points x sources x (sources +
+// 50) (the QR's m n^2 and the Green's functions' m n, each ~50 of them): what `plan` scales a
+// measured entry's transfer time by.
+struct LayoutSize {
+  long long sources = 0, fit_points = 0;
+  double work = 0;
+};
+LayoutSize layout_size(const std::array<double, 3>& axes_m, double omega_rad_s, double data_spacing_m,
+                       const TransferSettings& settings);
+
 // axes: semi-axes a <= b <= c [m]; data_spacing_m: the spacing at which u.n is known (the mesh's).
 ModeTransfer solve_mode_transfer(const std::array<double, 3>& axes_m, double omega_rad_s, double data_spacing_m,
                                  const SurfaceDisplacement& u, const TransferSettings& settings);
