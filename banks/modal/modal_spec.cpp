@@ -9,6 +9,7 @@
 #include "io/materials.hpp"
 #include "io/text_file.hpp"
 #include "kernels/modal/patch_sampling.hpp"
+#include "kernels/transfer/mode_transfer.hpp"
 
 namespace clatter::jobs {
 namespace {
@@ -79,7 +80,7 @@ const io::Schema& modal_schema() {
           {"medium.rho_kg_m3", kTransfer.air_density_kg_m3, "density of the air [kg/m^3]", {0.0, 1e5, true}},
           {"transfer.points_per_source", kTransfer.points_per_source,
            "fit points per source, along each grid angle (docs/transfer.md)", {1.0, 20.0}},
-          {"transfer.sources_per_wavelength", kTransfer.sources_per_wavelength,
+          {"transfer.sources_per_wavelength", kernels::transfer::kEllipsoidSourcesPerWavelength,
            "equivalent sources per air wavelength on their layer", {1.0, 20.0}},
           {"transfer.residual_target", kTransfer.residual_target,
            "boundary residual x normal fraction above which other source layers are tried", {1e-8, 1.0}},

@@ -68,6 +68,12 @@ struct LayoutSize {
 LayoutSize layout_size(const std::array<double, 3>& axes_m, double omega_rad_s, double data_spacing_m,
                        const TransferSettings& settings);
 
+// The modal bank's default of TransferSettings::sources_per_wavelength for these ellipsoid
+// layouts (the general-shape method of mesh_transfer.hpp keeps 3): at 2.5 the default bank's
+// high-k c modes cost a third (the 0.22:0.69:0.69 entry's top mode 10.2 -> 3.1 s) and its residuals stay
+// within 1.2e-2 (docs/transfer.md "Cost").
+inline constexpr double kEllipsoidSourcesPerWavelength = 2.5;
+
 // axes: semi-axes a <= b <= c [m]; data_spacing_m: the spacing at which u.n is known (the mesh's).
 ModeTransfer solve_mode_transfer(const std::array<double, 3>& axes_m, double omega_rad_s, double data_spacing_m,
                                  const SurfaceDisplacement& u, const TransferSettings& settings);

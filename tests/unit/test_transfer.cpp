@@ -59,7 +59,14 @@ struct SphereCase {
   double worst = 0, residual = 0;
   int order = 0;
 };
-SphereCase sphere_case(int n, int m, double ka, const TransferSettings& settings = {}) {
+// The modal bank's settings: the defaults with its sources per wavelength.
+TransferSettings bank_settings() {
+  TransferSettings s;
+  s.sources_per_wavelength = kEllipsoidSourcesPerWavelength;
+  return s;
+}
+
+SphereCase sphere_case(int n, int m, double ka, const TransferSettings& settings = bank_settings()) {
   const auto& mesh = sphere_mesh();
   std::vector<double> shape;
   for (const auto& p : mesh.nodes) {
@@ -138,7 +145,7 @@ FlatCase flat_case(std::array<double, 3> axes, int m, double kb_c, double k_c) {
     }
     return out;
   };
-  const TransferSettings st;
+  const TransferSettings st = bank_settings();
   const double omega = k_c / axes[2] * st.sound_speed_m_s;
   // The data's spacing: a coarse mesh's, half the thickness.
   const auto t = solve_mode_transfer(axes, omega, axes[0] / 2, u, st);
