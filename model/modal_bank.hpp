@@ -137,7 +137,8 @@ struct TransferSettings {
   int max_sources_per_octant = 900;
   // Flat bodies (b >= rim_aspect a): the rim-graded layout instead (docs/transfer.md "Flat
   // bodies"): spread sources on the confocal ellipsoid of thin semi-axis rim_inner_fraction a,
-  // neighbours within rim_spacing_per_depth of their depth; one attempt.
+  // neighbours within rim_spacing_per_depth of their depth; a second attempt 1.2x denser in the
+  // air wavelength where the first misses residual_target.
   double rim_aspect = 2;
   double rim_inner_fraction = 0.3;
   double rim_spacing_per_depth = 0.7;
