@@ -106,7 +106,7 @@ void apply_basis_rule(const FemModel& m, const std::vector<petsc::Vector>& refer
 // other mode's part by the ratio of the distances, and the rigid motions' by far more), then the
 // basis rule again; twice at most. The slicing's Krylov spaces resolve worst the lowest mode of a
 // wide interval, far from the shifts: sample e004's first mode had 4.4e-8 at k = 9.7
-// (docs/modal.md "Residuals").
+// (docs/modal.md "One entry, step by step", Residuals).
 void polish_over_limit(const FemModel& m, const std::vector<petsc::Vector>& reference,
                        const model::ModalSolveSettings& s, ModeSet& set) {
   for (int round = 0; round < 2; ++round) {
