@@ -100,10 +100,10 @@ EllipsoidMesh mesh_layered_ellipsoid(const LayeredMeshSettings& s, const Ellipso
   }
   if (linear.tets.empty()) throw MeshError("layered mesher", "no tetrahedra (the ellipse's triangulation is empty)");
   // Mid-nodes on the map (y, z, f) -> (y, z, f t(y, z)), f the layer's place in [-1, 1] and t the
-  // half thickness: the edge's midpoint in (y, z) (on the ring where both ends lie on one, so the
-  // rings stay ellipses) and in f, then mapped. Surface edges (f = +-1, or on the rim) land on the
-  // ellipsoid. The nearest point would move a mid-node near the rim sideways by the ring's sagitta,
-  // as far as the band's thinnest rings are wide, and fold them.
+  // half thickness: the edge's midpoint in (y, z) (in the band, in (rho, theta)) and in f, then
+  // mapped. Surface edges (f = +-1, or on the rim) land on the ellipsoid. The nearest point would
+  // move a mid-node near the rim sideways by the ring's sagitta, as far as the band's thinnest
+  // rings are wide, and fold them.
   EllipsoidMesh out = quadratic_mesh(linear, n_surface, [&](int na, int nb, bool) {
     const auto& A = node_at[static_cast<std::size_t>(na)];
     const auto& B = node_at[static_cast<std::size_t>(nb)];
