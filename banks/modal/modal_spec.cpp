@@ -61,7 +61,7 @@ const io::Schema& modal_schema() {
           {"mesh.elements_through_thickness", 3.0, "and h at most 2 a / this (a the smallest semi-axis; 10-node "
            "tetrahedra hold bending exactly)", {0.5, 20.0}},
           {"mesh.coarse_elements_through_thickness", 3.0, "the same cap on the pre-solve's mesh", {0.5, 20.0}},
-          {"mesh.layered_below_ratio", 0.2, "entries whose a / b is below this are meshed in layers through the "
+          {"mesh.layered_below_ratio", 0.19, "entries whose a / b is below this are meshed in layers through the "
            "thickness, with the in-plane h from the bending wavelength at f_max (docs/modal.md \"Thin entries\"); 0: "
            "every entry by TetGen's fill", {0.0, 1.0}},
           {"mesh.layers", std::int64_t{2}, "quadratic elements through the thickness of a layered entry", {1, 20}},
