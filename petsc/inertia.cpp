@@ -5,6 +5,7 @@
 
 #include "core/stage_log.hpp"
 #include "petsc/error.hpp"
+#include "petsc/subspace.hpp"
 
 namespace clatter::petsc {
 namespace {
@@ -75,9 +76,8 @@ std::vector<Vector> shift_invert(const Matrix& K, const Matrix& M, double sigma,
   Stage stage("factor solve");
   std::vector<Vector> out;
   for (const Vector& x : X) {
-    Vector mx(M.layout()), y(M.layout());
-    check(MatMult(M.get(), x.get(), mx.get()), "MatMult");
-    check(MatSolve(f.factor, mx.get(), y.get()), "MatSolve");
+    Vector y(M.layout());
+    check(MatSolve(f.factor, multiply(M, x).get(), y.get()), "MatSolve");
     out.push_back(std::move(y));
   }
   return out;

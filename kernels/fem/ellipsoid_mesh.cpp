@@ -131,7 +131,6 @@ void check_bounds(const MeshQuality& q, const EllipsoidMeshBounds& b) {
   if (reason[0] != '\0') throw MeshError(reason);
 }
 
-
 EllipsoidMesh mesh_ellipsoid(const EllipsoidMeshSettings& s, const EllipsoidMeshBounds& bounds) {
   const P3& r = s.semi_axes_m;
   if (!(r[0] > 0 && r[1] > 0 && r[2] > 0 && s.edge_length_m > 0 && s.elements_through_thickness > 0))

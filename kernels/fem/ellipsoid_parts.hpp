@@ -59,10 +59,6 @@ struct MeshRepairs {
 bool repair_mesh(const EllipsoidMesh& mesh, const EdgeRule& rule, const EllipsoidMeshBounds& bounds,
                  const std::vector<std::array<double, 3>>& inner, SurfaceTriangulation& surface, MeshRepairs& repairs);
 
-}  // namespace clatter::kernels::fem
-
-namespace clatter::kernels::fem {
-
 // The 10-node mesh of a linear one whose first n_surface_points points are its surface vertices
 // (on the ellipsoid): tetrahedra turned positive, the boundary found (faces met once, outward),
 // mid-nodes at straight midpoints inside and on the ellipsoid (nearest point) on the boundary. Both

@@ -241,19 +241,24 @@ Multipole expansion_of(double k, const SourceFit& fit, const SourceLayout& layou
 constexpr double kLayerDataScale = 0.7;
 constexpr double kRimDataScale = 2;
 
-// The grids of the first attempt (solve_mode_transfer's order).
-Grids first_grids(const std::array<double, 3>& axes_m, double k, double data_spacing_m, const TransferSettings& settings) {
-  if (axes_m[1] >= settings.rim_aspect * axes_m[0])
-    return make_rim_grids(axes_m, k, kRimDataScale * data_spacing_m, settings.rim_inner_fraction,
-                          settings.rim_spacing_per_depth, settings);
-  return make_grids(axes_m, k, kLayerDataScale * data_spacing_m, settings.source_depths.front(), settings);
+// The two layouts as solve_mode_transfer and layout_size take them: which one a body gets, and
+// each at its data scale.
+bool rim_layout(const std::array<double, 3>& axes_m, const TransferSettings& s) { return axes_m[1] >= s.rim_aspect * axes_m[0]; }
+Grids rim_grids(const std::array<double, 3>& axes_m, double k, double data_spacing_m, const TransferSettings& s) {
+  return make_rim_grids(axes_m, k, kRimDataScale * data_spacing_m, s.rim_inner_fraction, s.rim_spacing_per_depth, s);
+}
+Grids layer_grids(const std::array<double, 3>& axes_m, double k, double data_spacing_m, double depth,
+                  const TransferSettings& s) {
+  return make_grids(axes_m, k, kLayerDataScale * data_spacing_m, depth, s);
 }
 
 }  // namespace
 
 LayoutSize layout_size(const std::array<double, 3>& axes_m, double omega_rad_s, double data_spacing_m,
                        const TransferSettings& settings) {
-  const Grids g = first_grids(axes_m, omega_rad_s / settings.sound_speed_m_s, data_spacing_m, settings);
+  const double k = omega_rad_s / settings.sound_speed_m_s;
+  const Grids g = rim_layout(axes_m, settings) ? rim_grids(axes_m, k, data_spacing_m, settings)
+                                               : layer_grids(axes_m, k, data_spacing_m, settings.source_depths.front(), settings);
   LayoutSize s;
   s.sources = 8 * static_cast<long long>(g.layout.sources.size());
   s.fit_points = 8 * static_cast<long long>(g.fit.size());
@@ -310,15 +315,14 @@ ModeTransfer solve_mode_transfer(const std::array<double, 3>& axes_m, double ome
   // layout is built for its depth from the start, and a deeper or shallower copy would not help;
   // where it misses, a second fit 1.2x denser in the air wavelength (the 0.153:0.484:0.861
   // entry's mode 9: 2.2e-2 at 2.5 per wavelength, 3.6e-3 at 3).
-  if (axes_m[1] >= settings.rim_aspect * axes_m[0]) {
+  if (rim_layout(axes_m, settings)) {
     TransferSettings s = settings;
     for (int fit = 0; fit < 2 && (fit == 0 || !met()); ++fit, s.sources_per_wavelength *= 1.2)
-      try_grids(make_rim_grids(axes_m, k, kRimDataScale * data_spacing_m, s.rim_inner_fraction, s.rim_spacing_per_depth, s),
-                1 - s.rim_inner_fraction);
+      try_grids(rim_grids(axes_m, k, data_spacing_m, s), 1 - s.rim_inner_fraction);
     return best;
   }
   for (double depth : settings.source_depths) {
-    const double residual = try_grids(make_grids(axes_m, k, kLayerDataScale * data_spacing_m, depth, settings), depth);
+    const double residual = try_grids(layer_grids(axes_m, k, data_spacing_m, depth, settings), depth);
     if (met()) break;
     // A layer depth that did not halve the residual says the floor is the data's (C0 kinks of
     // u.n), not a resonance of the layer: further depths would not help either.
