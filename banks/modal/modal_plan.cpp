@@ -35,7 +35,8 @@ constexpr double kMemoryExponent = 4.0 / 3.0;
 // faster than 1 (the slicing's triangular solves scale poorly), 2^0.3 = 1.23.
 constexpr double kGroupSpeedupExponent = 0.3;
 // The transfer's time scales with the work of its layouts' fits (kernels/transfer layout_size:
-// fit points x sources^2, set by the air wavelength, the mesh's spacing and the shape's layout),
+// the QR's fit points x unknowns^2 and the Green's functions of the fill and the check, set by the
+// air wavelength, the mesh's spacing and the shape's layout),
 // averaged over the entry's modes, whose density grows like f^2 on a bulky entry (Weyl) and like
 // f on a flat one (a plate's); spread evenly over a group. Measured on the default bank (docs/
 // benchmarks.md), time grows like that work^0.8 (fitted over its 14 entries; with work^1 the
@@ -146,7 +147,7 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
                           presolve_s);
   e.report += fmt::format("  calibration: {} solved here in {:.1f} s + {:.1f} s transfer: {} modes, {} dofs, {:.0f} MB MUMPS "
                           "factors; time ~ (coarse dofs^{} + dofs + dofs^{} (1 + modes/{})) / ranks_per_task^{} + "
-                          "modes x (its layouts' work, fit points x sources^2)^{} / ranks_per_task\n",
+                          "modes x (its layouts' work: QR and Green's functions)^{} / ranks_per_task\n",
                           tasks[cal].name, entry.cost.total_s - cal_transfer_s, cal_transfer_s, entry.modes(),
                           entry.mesh.dofs, cal_memory, kEstimateExponent, kDofsExponent, kModesPerFixedShare,
                           kGroupSpeedupExponent, kTransferWorkExponent);

@@ -51,26 +51,67 @@ std::array<Eigen::Vector3d, 8> images_of(const Eigen::Vector3d& y) {
   return images;
 }
 
-// For the fill, each fit point's coarsest level of `row`: the row's distance (to the level's
-// samples, less half their spacing) is at least kLevelDistance times the level's spacing, and the
-// spacing is within a tenth of the air wavelength (the midpoint rule's radiating error, ~(k s)^2
-// / 24, does not fall with distance). Levels are tried coarsest first, so only points near the
-// row pay for the finer distances.
-std::vector<std::size_t> row_levels(double k, const SpreadRow& row, const SurfacePoints& points) {
-  std::vector<std::size_t> level(points.size(), 0);
-  const double most = 2 * std::numbers::pi / k / 10;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    for (std::size_t l = row.levels.size(); l-- > 1;) {
-      if (row.spacing_m[l] > most) continue;
-      double d = INFINITY;
-      for (const SpreadPoint& p : row.levels[l]) d = std::min(d, (points.position_m[i] - p.position_m).squaredNorm());
-      if (std::sqrt(d) - 0.5 * row.spacing_m[l] >= kLevelDistance * row.spacing_m[l]) {
-        level[i] = l;
-        break;
-      }
-    }
-  return level;
+// A row's panels: the stretches that one sample of its coarsest level stands for (level l has
+// size / panels samples per panel, in order), as bounding spheres of their finest samples.
+struct Panel {
+  Eigen::Vector3d center;
+  double radius_m = 0;
+};
+std::vector<Panel> panels_of(const SpreadRow& row) {
+  const std::size_t panels = row.levels.back().size(), per = row.levels.front().size() / panels;
+  std::vector<Panel> out(panels);
+  for (std::size_t j = 0; j < panels; ++j) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (std::size_t q = j * per; q < (j + 1) * per; ++q) c += row.levels.front()[q].position_m;
+    c /= static_cast<double>(per);
+    double r = 0;
+    for (std::size_t q = j * per; q < (j + 1) * per; ++q) r = std::max(r, (row.levels.front()[q].position_m - c).norm());
+    out[j] = {c, r};
+  }
+  return out;
 }
+
+// How finely a point sees a panel: the coarsest level whose spacing s is within `most_m` and
+// whose distance to the panel (less half a spacing) is at least `distance` s. The midpoint rule
+// of a smooth density at spacing s is off by ~e^(-2 pi D / s) at distance D near the row, but by
+// ~(k s)^2 / 24 in what radiates, at any distance; levels are tried coarsest first, so only the
+// panels near a point pay for the finer spacings.
+struct LevelRule {
+  double distance, most_m;
+};
+std::size_t panel_level(const SpreadRow& row, const Panel& panel, const Eigen::Vector3d& x, const LevelRule& rule) {
+  const double d = (x - panel.center).norm() - panel.radius_m;
+  for (std::size_t l = row.levels.size(); l-- > 1;)
+    if (row.spacing_m[l] <= rule.most_m && d - 0.5 * row.spacing_m[l] >= rule.distance * row.spacing_m[l]) return l;
+  return 0;
+}
+
+// Calls visit(sample, points) for every sample of `row` with the points that see it: per panel,
+// the points grouped by the level they see it at (the images of a sample are the loop's outer
+// work, shared by its points).
+template <class Visit>
+void for_each_sample(const SpreadRow& row, const SurfacePoints& points, const std::vector<std::size_t>& which,
+                     const LevelRule& rule, const Visit& visit) {
+  const auto panels = panels_of(row);
+  std::vector<std::vector<std::size_t>> by_level(row.levels.size());
+  for (std::size_t j = 0; j < panels.size(); ++j) {
+    for (auto& v : by_level) v.clear();
+    for (const std::size_t i : which) by_level[panel_level(row, panels[j], points.position_m[i], rule)].push_back(i);
+    for (std::size_t l = 0; l < row.levels.size(); ++l) {
+      if (by_level[l].empty()) continue;
+      const std::size_t per = row.levels[l].size() / panels.size();
+      for (std::size_t q = j * per; q < (j + 1) * per; ++q) visit(row.levels[l][q], by_level[l]);
+    }
+  }
+}
+
+// The fill's rule: a fit point at least kLevelDistance spacings from a panel (e^(-4 pi) ~ 3.5e-6),
+// spacings within a tenth of the air wavelength.
+LevelRule fill_rule(double k) { return {kLevelDistance, 2 * std::numbers::pi / k / 10}; }
+// The field's (residual, checks): 4 spacings (e^(-8 pi) ~ 1e-11), within a 30th of the wavelength,
+// so that what radiates differs from the finest samples' field by ~(2 pi / 30)^2 / 24 ~ 2e-3 of
+// the far panels' share at most, and the fill's approximation still shows in the residual.
+LevelRule field_rule(double k) { return {2 * kLevelDistance, 2 * std::numbers::pi / k / 30}; }
 
 // Row i, column j of class sigma: sqrt(w_i) d/dn_i of sum_t sign(t, sigma) G(x_i, mirror_t(y_j)),
 // for every requested class in one pass over the images (the Green's functions, not the classes,
@@ -103,28 +144,22 @@ std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit
       });
     return a;
   }
-  for (const SpreadRow& row : layout.spread) {
-    const auto level = row_levels(k, row, fit);
-    for (std::size_t l = 0; l < row.levels.size(); ++l) {
-      std::vector<std::size_t> near;
-      for (std::size_t i = 0; i < fit.size(); ++i)
-        if (level[i] == l) near.push_back(i);
-      if (near.empty()) continue;
-      for (const SpreadPoint& p : row.levels[l]) {
-        const auto images = images_of(p.position_m);
-        for (const std::size_t ui : near) {
-          const auto g = image_greens(k, fit.position_m[ui], fit.normal[ui], images);
-          for (std::size_t c = 0; c < sigmas.size(); ++c) {
-            std::complex<double> sum = 0;
-            for (int t = 0; t < 8; ++t) sum += parity_sign(t, sigmas[c]) * g[static_cast<std::size_t>(t)].normal_derivative;
-            sum *= root_w[ui];
-            for (std::size_t tap = 0; tap < 2; ++tap)
-              if (p.unknown[tap] >= 0) a[c](static_cast<Eigen::Index>(ui), p.unknown[tap]) += p.weight_for(tap, sigmas[c]) * sum;
-          }
+  std::vector<std::size_t> all(fit.size());
+  for (std::size_t i = 0; i < fit.size(); ++i) all[i] = i;
+  for (const SpreadRow& row : layout.spread)
+    for_each_sample(row, fit, all, fill_rule(k), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
+      const auto images = images_of(p.position_m);
+      for (const std::size_t ui : near) {
+        const auto g = image_greens(k, fit.position_m[ui], fit.normal[ui], images);
+        for (std::size_t c = 0; c < sigmas.size(); ++c) {
+          std::complex<double> sum = 0;
+          for (int t = 0; t < 8; ++t) sum += parity_sign(t, sigmas[c]) * g[static_cast<std::size_t>(t)].normal_derivative;
+          sum *= root_w[ui];
+          for (std::size_t tap = 0; tap < p.taps.size(); ++tap)
+            a[c](static_cast<Eigen::Index>(ui), p.taps[tap].unknown) += p.weight_for(tap, sigmas[c]) * sum;
         }
       }
-    }
-  }
+    });
   return a;
 }
 
@@ -200,8 +235,8 @@ namespace {
 std::vector<std::complex<double>> sample_strengths(const std::vector<SpreadPoint>& samples, const ParityFit& pf) {
   std::vector<std::complex<double>> out(samples.size(), 0.0);
   for (std::size_t q = 0; q < samples.size(); ++q)
-    for (std::size_t t = 0; t < 2; ++t)
-      if (samples[q].unknown[t] >= 0) out[q] += samples[q].weight_for(t, pf.sigma) * pf.strengths(samples[q].unknown[t]);
+    for (std::size_t t = 0; t < samples[q].taps.size(); ++t)
+      if (samples[q].taps[t].unknown >= 0) out[q] += samples[q].weight_for(t, pf.sigma) * pf.strengths(samples[q].taps[t].unknown);
   return out;
 }
 
@@ -262,18 +297,35 @@ std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const
     add_fields(k_rad_m, layout.sources.position_m, strengths, points, all, out);
     return out;
   }
-  // The field itself from the finest samples only: the residual and the far-field checks see the
-  // sources the expansion is built from, whatever the fill approximated.
-  for (const SpreadRow& row : layout.spread) {
-    std::vector<std::size_t> all(m);
-    for (std::size_t i = 0; i < m; ++i) all[i] = i;
-    std::vector<Eigen::Vector3d> positions;
-    for (const SpreadPoint& p : row.levels.front()) positions.push_back(p.position_m);
-    std::vector<std::vector<std::complex<double>>> strengths;
-    for (const auto& pf : fit.classes) strengths.push_back(sample_strengths(row.levels.front(), pf));
-    add_fields(k_rad_m, positions, strengths, points, all, out);
-  }
+  // The field of the finest samples, each panel taken as coarsely as field_rule allows (much
+  // stricter than the fill's): the residual and the far-field checks see the sources the expansion
+  // is built from, and what the fill approximated shows in the residual.
+  std::vector<std::size_t> all(m);
+  for (std::size_t i = 0; i < m; ++i) all[i] = i;
+  std::vector<std::vector<std::complex<double>>> strengths(fit.classes.size(), std::vector<std::complex<double>>(1));
+  for (const SpreadRow& row : layout.spread)
+    for_each_sample(row, points, all, field_rule(k_rad_m), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
+      for (std::size_t c = 0; c < fit.classes.size(); ++c) {
+        std::complex<double> v = 0;
+        for (std::size_t t = 0; t < p.taps.size(); ++t) v += p.weight_for(t, fit.classes[c].sigma) * fit.classes[c].strengths(p.taps[t].unknown);
+        strengths[c][0] = v;
+      }
+      add_fields(k_rad_m, {p.position_m}, strengths, points, near, out);
+    });
   return out;
+}
+
+double green_evaluations(double k_rad_m, const SourceLayout& layout, const SurfacePoints& fit, const SurfacePoints& check) {
+  if (layout.spread.empty()) return static_cast<double>(fit.size() + check.size()) * static_cast<double>(layout.sources.size());
+  double total = 0;
+  for (const SpreadRow& row : layout.spread) {
+    const auto panels = panels_of(row);
+    for (const auto& [points, rule] : {std::pair{&fit, fill_rule(k_rad_m)}, std::pair{&check, field_rule(k_rad_m)}})
+      for (const Panel& panel : panels)
+        for (const Eigen::Vector3d& x : points->position_m)
+          total += static_cast<double>(row.levels[panel_level(row, panel, x, rule)].size() / panels.size());
+  }
+  return total;
 }
 
 void field_at_mirror(const std::vector<ClassField>& fields, int s, std::vector<std::complex<double>>& pressure,

@@ -14,19 +14,25 @@
 
 namespace clatter::kernels::transfer {
 
-// A point of a spread source (below): its position and its share of up to two unknowns. Within
-// half a node spacing of the mirror plane `plane` (mirror bit 4: z = 0, bit 2: y = 0; 0: none) the
-// density is continued to its mirror image, so a class odd across that plane takes odd_weight
-// (falling to 0 on the plane) instead of weight (constant).
+// A point of a spread source (below): its position and its share of the unknowns whose B-splines
+// cover it. A tap may be a ghost: the mirror image of an unknown's B-spline across
+// the mirror plane `plane` (bit 4: z = 0, bit 2: y = 0; 0: the unknown's own), which a class odd
+// across that plane takes with the opposite sign, so the density is smooth across the plane and,
+// for an odd class, 0 on it.
+struct SpreadTap {
+  int unknown = -1;
+  double weight = 0;
+  int plane = 0;
+};
 struct SpreadPoint {
   Eigen::Vector3d position_m;
-  std::array<int, 2> unknown{-1, -1};
-  std::array<double, 2> weight{0, 0}, odd_weight{0, 0};
-  int plane = 0;
-  double weight_for(std::size_t tap, int sigma) const { return (plane & sigma) ? odd_weight[tap] : weight[tap]; }
+  std::vector<SpreadTap> taps;
+  double weight_for(std::size_t tap, int sigma) const {
+    return (taps[tap].plane & sigma) ? -taps[tap].weight : taps[tap].weight;
+  }
 };
 
-// One row of spread sources, sampled at levels of spacing: levels[0] within the row's depth (the
+// One row of samples of the spread sources, at levels of spacing: levels[0] within the row's depth (the
 // field's definition: the residual, the field and the expansion use it), each next one about 4x
 // coarser, down to one sample per node. A level spaced s integrates the row's smooth density to
 // ~e^(-2 pi D / s) at distance D, so a fit point at least kLevelDistance s from the row may use it
@@ -39,9 +45,9 @@ inline constexpr double kLevelDistance = 2.0;
 
 struct SourceLayout {
   SurfacePoints sources;  // first octant, one per unknown (inner_layer, or a spread source's node); positions only matter
-  // Empty: unknown j is a monopole at sources[j]. Else unknown j is a line density along its row,
-  // linear between neighbouring nodes (a hat), sampled closer together than the row's depth so
-  // that the line's field is smooth on the surface (docs/transfer.md).
+  // Empty: unknown j is a monopole at sources[j]. Else unknown j is a surface density on the
+  // source layer (a B-spline about its node, mode_transfer.cpp), sampled by rows of points closer
+  // together than their depth, so that its field is smooth on the surface (docs/transfer.md).
   std::vector<SpreadRow> spread;
 };
 
@@ -86,6 +92,11 @@ struct ClassMonopoles {
   std::vector<Eigen::VectorXcd> strengths;  // [fitted class][point]
 };
 ClassMonopoles class_monopoles(const SourceFit& fit, const SourceLayout& layout);
+
+// The Green's functions (each over its 8 images) that fit_sources evaluates on `fit` and
+// class_fields on `check`: points x sources, or for spread sources the samples each point sees at
+// its panels' levels. What a fit costs besides its QR.
+double green_evaluations(double k_rad_m, const SourceLayout& layout, const SurfacePoints& fit, const SurfacePoints& check);
 
 // The whole field at the points of mirror s.
 void field_at_mirror(const std::vector<ClassField>& fields, int s, std::vector<std::complex<double>>& pressure,

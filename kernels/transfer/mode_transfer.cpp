@@ -1,8 +1,10 @@
 #include "kernels/transfer/mode_transfer.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "kernels/transfer/equivalent_sources.hpp"
 #include "kernels/transfer/special_functions.hpp"
@@ -69,12 +71,13 @@ struct RimLayer {
     const Eigen::Vector3d d = dir == 0 ? at(inner, t + h, p) - at(inner, t, p) : at(inner, t, p + h) - at(inner, t, p);
     return d.norm() / h / spacing * std::numbers::pi / 2;
   }
-  int rows(int minimum) const {
+  // Equally spaced rows (in t) within the depth rule (and the cap), or the cap alone.
+  int rows(bool by_depth, int minimum) const {
     double most = 0;
     for (int i = 0; i <= 192; ++i)
       for (int j = 0; j <= 24; ++j) {
         const double t = std::max(1e-3, i * std::numbers::pi / 384), p = j * std::numbers::pi / 48;
-        most = std::max(most, need(t, p, 0, depth_spacing(t, p)));
+        most = std::max(most, need(t, p, 0, by_depth ? depth_spacing(t, p) : cap_m));
       }
     return std::max(minimum, static_cast<int>(std::ceil(most)));
   }
@@ -97,85 +100,165 @@ std::vector<double> row_angles(int n, bool midpoint) {
   return t;
 }
 
-// The samples of one row of spread sources at t: `nodes` unknowns from `first` on (hats, equally
-// spaced in p), sampled at `per_node` points each.
-std::vector<SpreadPoint> spread_samples(const std::array<double, 3>& inner, double t, int first, int nodes, int per_node) {
-  const double quarter = std::numbers::pi / 2, node_step = quarter / nodes, step = node_step / per_node;
-  std::vector<SpreadPoint> out;
-  for (int q = 0; q < nodes * per_node; ++q) {
-    const double p = (q + 0.5) * step, f = p / node_step - 0.5;  // f: position in node units
-    SpreadPoint sp;
-    sp.position_m = RimLayer::at(inner, t, p);
-    if (f < 0) {  // below the first node: continued across z = 0
-      sp.unknown = {first, -1};
-      sp.weight = {1, 0};
-      sp.odd_weight = {p / (0.5 * node_step), 0};
-      sp.plane = 4;
-    } else if (f > nodes - 1) {  // beyond the last node: continued across y = 0
-      sp.unknown = {first + nodes - 1, -1};
-      sp.weight = {1, 0};
-      sp.odd_weight = {(quarter - p) / (0.5 * node_step), 0};
-      sp.plane = 2;
-    } else {
-      const int l = std::min(nodes - 2, static_cast<int>(f));
-      const double w = f - l;
-      sp.unknown = {first + l, nodes > 1 ? first + l + 1 : -1};
-      sp.weight = sp.odd_weight = {1 - w, w};
+// The cubic B-spline, 2/3 at its node, 0 from two node spacings on: a density of them represents
+// a smooth one to O(h^4) where hats between nodes left O(h^2) (the 0.021:0.707:0.707 entry's 918 Hz
+// mode, m = 8 around the rim: boundary residual 0.11 with hats along rows, 5.7e-3 with B-splines).
+double cubic_bspline(double x) {
+  x = std::abs(x);
+  if (x < 1) return 2.0 / 3 - x * x + 0.5 * x * x * x;
+  if (x < 2) return (2 - x) * (2 - x) * (2 - x) / 6;
+  return 0;
+}
+
+// The rim layout's unknowns: a density on the inner confocal ellipsoid, the tensor product of cubic
+// B-splines on node rows in t and, along each row, nodes equally spaced in p (a row's own count).
+// The rows are equally spaced in a coordinate s(t) whose density is the arc of the outer meridians
+// (through b and through c, the denser) over min(cap sqrt(cos t), kRimTurn x their curvature
+// radius): toward the rim the plate thins as cos t and its bending wavelength shortens as the
+// square root of that, so a mode varies faster across the rows than along them (the 0.021:0.707:
+// 0.707 entry's 918 Hz mode: residual 2.5e-2 with rows within the cap, 1.0e-2 within cap
+// sqrt(cos t) at 12 % more unknowns); and the rim, whose normal turns through pi / 2 within a few
+// of its radii a^2 / b, gets about pi / (2 kRimTurn) rows. Beyond the octant's edges the nodes are mirror images of those inside (ghost taps,
+// SpreadTap::plane): across p = 0 the plane z = 0, across p = pi / 2 the plane y = 0, across the
+// rim t = pi / 2 the plane x = 0, and across the pole t = 0 the point (-t, p) is (t, p + pi), the
+// mirror image in both y and z; s(t) is odd about both ends, so the ghost rows are the mirrored
+// ones. The density is smooth on the whole surface, and a class odd across a plane falls
+// smoothly to 0 on it.
+constexpr double kRimTurn = 0.2;        // radians of the rim normal's turn per node row
+constexpr double kThinningFloor = 0.25;  // the cap's factor sqrt(cos t), not below this
+
+struct NodeGrid {
+  std::vector<double> s_of_t;  // s at t = j pi / (2 (size - 1)), in node rows (node row i at s = i + 1/2)
+  std::vector<int> nodes, first;  // per node row: its node count in p, its first unknown
+
+  NodeGrid(const std::array<double, 3>& outer, double cap_m) {
+    constexpr int kTable = 4096;
+    const auto density = [&](double t) {  // node rows per radian of t: the denser of the meridians through b and c
+      double most = 0;
+      for (const double b : {outer[1], outer[2]}) {
+        const double a = outer[0], q = a * a * std::sin(t) * std::sin(t) + b * b * std::cos(t) * std::cos(t);
+        const double arc = std::sqrt(q), curvature_radius = q * arc / (a * b);
+        const double thinning = std::max(kThinningFloor, std::sqrt(std::cos(t)));
+        most = std::max(most, arc / std::min(cap_m * thinning, kRimTurn * curvature_radius));
+      }
+      return most;
+    };
+    const double dt = std::numbers::pi / 2 / kTable;
+    s_of_t.assign(kTable + 1, 0.0);
+    for (int j = 1; j <= kTable; ++j) s_of_t[j] = s_of_t[j - 1] + 0.5 * dt * (density((j - 1) * dt) + density(j * dt));
+    const double rows = std::max(2.0, std::ceil(s_of_t.back()));
+    for (double& v : s_of_t) v *= rows / s_of_t.back();
+  }
+  int rows() const { return static_cast<int>(std::lround(s_of_t.back())); }
+  double s(double t) const {
+    const double x = t / (std::numbers::pi / 2) * static_cast<double>(s_of_t.size() - 1);
+    const auto j = std::min(static_cast<std::size_t>(x), s_of_t.size() - 2);
+    return s_of_t[j] + (x - static_cast<double>(j)) * (s_of_t[j + 1] - s_of_t[j]);
+  }
+  double t(double s_value) const {  // the inverse, for the node rows' own angles
+    const auto j = static_cast<std::size_t>(std::upper_bound(s_of_t.begin(), s_of_t.end(), s_value) - s_of_t.begin());
+    const std::size_t hi = std::clamp<std::size_t>(j, 1, s_of_t.size() - 1);
+    const double w = (s_value - s_of_t[hi - 1]) / (s_of_t[hi] - s_of_t[hi - 1]);
+    return (static_cast<double>(hi - 1) + w) * (std::numbers::pi / 2) / static_cast<double>(s_of_t.size() - 1);
+  }
+
+  void add_p_taps(int row, double p, double weight, int plane, std::vector<SpreadTap>& taps) const {
+    const int n = nodes[static_cast<std::size_t>(row)];
+    const double f = p / (std::numbers::pi / 2 / n) - 0.5;
+    const int base = static_cast<int>(std::floor(f));
+    for (int l = base - 1; l <= base + 2; ++l) {
+      int node = l, bits = plane;
+      if (l < 0) {
+        node = -1 - l;
+        bits ^= 4;
+      } else if (l > n - 1) {
+        node = 2 * n - 1 - l;
+        bits ^= 2;
+      }
+      taps.push_back({first[static_cast<std::size_t>(row)] + node, weight * cubic_bspline(f - l), bits});
     }
-    for (double& w : sp.weight) w /= per_node;
-    for (double& w : sp.odd_weight) w /= per_node;
-    out.push_back(sp);
+  }
+  std::vector<SpreadTap> taps_at(double t, double p, double weight) const {
+    const int n = rows();
+    const double f = s(t) - 0.5;
+    const int base = static_cast<int>(std::floor(f));
+    std::vector<SpreadTap> taps;
+    for (int i = base - 1; i <= base + 2; ++i) {
+      const double w = cubic_bspline(f - i);
+      if (i < 0) add_p_taps(-1 - i, p, weight * w, 6, taps);
+      else if (i > n - 1) add_p_taps(2 * n - 1 - i, p, weight * w, 1, taps);
+      else add_p_taps(i, p, weight * w, 0, taps);
+    }
+    return taps;
+  }
+};
+
+// One row of samples of the density at t, `count` equally spaced in p, each weighted by its area
+// on the inner ellipsoid (so that the samples integrate the density by the midpoint rule).
+std::vector<SpreadPoint> row_samples(const std::array<double, 3>& inner, const NodeGrid& nodes, double t, double dt,
+                                     int count) {
+  const double dp = std::numbers::pi / 2 / count, h = 1e-6;
+  std::vector<SpreadPoint> out;
+  for (int q = 0; q < count; ++q) {
+    const double p = (q + 0.5) * dp;
+    const Eigen::Vector3d x = RimLayer::at(inner, t, p);
+    const Eigen::Vector3d xt = (RimLayer::at(inner, t + h, p) - x) / h, xp = (RimLayer::at(inner, t, p + h) - x) / h;
+    out.push_back({x, nodes.taps_at(t, p, xt.cross(xp).norm() * dt * dp)});
   }
   return out;
 }
 
-// One row of spread sources: its unknowns' nodes and its sample levels (per_node, per_node / 4,
-// ... down to 1 per node).
-void add_spread_row(const std::array<double, 3>& inner, double t, int nodes, int per_node, SourceLayout& layout) {
-  const int first = static_cast<int>(layout.sources.size());
-  for (int l = 0; l < nodes; ++l) {
-    layout.sources.position_m.push_back(RimLayer::at(inner, t, (l + 0.5) * std::numbers::pi / 2 / nodes));
-    layout.sources.normal.emplace_back(0, 0, 0);
-    layout.sources.weight_m2.push_back(0);
-  }
-  SpreadRow row;
-  for (int per = per_node;; per = std::max(1, per / 4)) {
-    row.levels.push_back(spread_samples(inner, t, first, nodes, per));
-    const auto& samples = row.levels.back();
-    double gap = 0;
-    for (std::size_t q = 1; q < samples.size(); ++q) gap = std::max(gap, (samples[q].position_m - samples[q - 1].position_m).norm());
-    row.spacing_m.push_back(gap);
-    if (per == 1) break;
-  }
-  layout.spread.push_back(std::move(row));
-}
-
 Grids make_rim_grids(const std::array<double, 3>& axes, double k, double data_spacing_m, double inner_fraction,
                      double spacing_per_depth, const TransferSettings& s) {
-  const double lambda = 2 * std::numbers::pi / k;
+  const double lambda = 2 * std::numbers::pi / k, quarter = std::numbers::pi / 2;
   const RimLayer layer{axes, confocal_axes_m(axes, inner_fraction), spacing_per_depth,
                        std::min(lambda / s.sources_per_wavelength, 2 * data_spacing_m)};
-  const int rows = layer.rows(s.minimum_per_angle), minimum_nodes = 2;
+  constexpr int kMinimumNodes = 2;  // a row's ghosts are its own nodes
   Grids g;
-  std::vector<double> nodes_at;  // t of each row, and its node count, for the fit grid
-  std::vector<int> nodes_in;
-  for (double t : row_angles(rows, true)) {
-    const int dense = layer.along(t, true, minimum_nodes), nodes = std::min(dense, layer.along(t, false, minimum_nodes));
-    add_spread_row(layer.inner, t, nodes, (dense + nodes - 1) / nodes, g.layout);
-    nodes_at.push_back(t);
-    nodes_in.push_back(nodes);
+  // The unknowns: node rows graded to the rim (NodeGrid), nodes along each within the cap.
+  NodeGrid nodes(axes, layer.cap_m);
+  const int node_rows = nodes.rows();
+  for (int i = 0; i < node_rows; ++i) {
+    const double t = nodes.t(i + 0.5);
+    const int n = layer.along(t, false, kMinimumNodes);
+    nodes.first.push_back(static_cast<int>(g.layout.sources.size()));
+    nodes.nodes.push_back(n);
+    for (int l = 0; l < n; ++l) {
+      g.layout.sources.position_m.push_back(RimLayer::at(layer.inner, t, (l + 0.5) * quarter / n));
+      g.layout.sources.normal.emplace_back(0, 0, 0);
+      g.layout.sources.weight_m2.push_back(0);
+    }
+  }
+  // The samples: rows within spacing_per_depth of their depth, so that the density is smooth on
+  // the surface; along each, within it too at the finest level, and each next level 4x coarser
+  // down to the cap (SpreadRow::levels).
+  const int sample_rows = layer.rows(true, s.minimum_per_angle);
+  const double dt = quarter / sample_rows;
+  for (int r = 0; r < sample_rows; ++r) {
+    const double t = (r + 0.5) * dt;
+    const int coarse = layer.along(t, false, kMinimumNodes), dense = std::max(coarse, layer.along(t, true, kMinimumNodes));
+    SpreadRow row;
+    for (int per = (dense + coarse - 1) / coarse;; per = std::max(1, per / 4)) {
+      row.levels.push_back(row_samples(layer.inner, nodes, t, dt, coarse * per));
+      const auto& samples = row.levels.back();
+      double gap = 0;
+      for (std::size_t q = 1; q < samples.size(); ++q) gap = std::max(gap, (samples[q].position_m - samples[q - 1].position_m).norm());
+      row.spacing_m.push_back(gap);
+      if (per == 1) break;
+    }
+    g.layout.spread.push_back(std::move(row));
   }
   // Fit points: points_per_source times the unknowns per angle near their t, and two per node
   // spacing of the data (whose C0 kinks would alias otherwise).
   const auto lengths = rim_lengths_m(axes);
   const auto along = [&](double t, int extra) {
-    const auto near = std::lower_bound(nodes_at.begin(), nodes_at.end(), t) - nodes_at.begin();
-    int n = nodes_in[static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(near, 0, rows - 1))];
-    if (near > 0) n = std::max(n, nodes_in[static_cast<std::size_t>(near - 1)]);
+    const int near = std::clamp(static_cast<int>(nodes.s(t)), 0, node_rows - 1);
+    int n = nodes.nodes[static_cast<std::size_t>(near)];
+    if (near + 1 < node_rows) n = std::max(n, nodes.nodes[static_cast<std::size_t>(near + 1)]);
     return extra + std::max(static_cast<int>(std::ceil(s.points_per_source * n)),
                             count(std::sin(t) * lengths[1], data_spacing_m / 2, 3));
   };
-  const int fit_rows = std::max(static_cast<int>(std::ceil(s.points_per_source * rows)),
+  const int fit_rows = std::max(static_cast<int>(std::ceil(s.points_per_source * node_rows)),
                                 count(lengths[0], data_spacing_m / 2, s.minimum_per_angle));
   std::vector<int> fit, check;
   for (double t : row_angles(fit_rows, false)) fit.push_back(along(t, 0));
@@ -254,6 +337,9 @@ Grids layer_grids(const std::array<double, 3>& axes_m, double k, double data_spa
 
 }  // namespace
 
+// A Green's function over 8 images (sines, cosines, a division each) in complex multiply-adds.
+constexpr double kGreenWork = 50;
+
 LayoutSize layout_size(const std::array<double, 3>& axes_m, double omega_rad_s, double data_spacing_m,
                        const TransferSettings& settings) {
   const double k = omega_rad_s / settings.sound_speed_m_s;
@@ -263,7 +349,7 @@ LayoutSize layout_size(const std::array<double, 3>& axes_m, double omega_rad_s, 
   s.sources = 8 * static_cast<long long>(g.layout.sources.size());
   s.fit_points = 8 * static_cast<long long>(g.fit.size());
   const double n = static_cast<double>(g.layout.sources.size()), m = static_cast<double>(g.fit.size());
-  s.work = m * n * (n + 50);
+  s.work = m * n * n + kGreenWork * green_evaluations(k, g.layout, g.fit, g.check);
   return s;
 }
 
@@ -313,12 +399,14 @@ ModeTransfer solve_mode_transfer(const std::array<double, 3>& axes_m, double ome
   const auto met = [&] { return best.boundary_residual * std::max(best.normal_fraction, 0.5) <= settings.residual_target; };
   // A flat body's rim is sharper than any layer following the normal can resolve: the rim-graded
   // layout is built for its depth from the start, and a deeper or shallower copy would not help;
-  // where it misses, a second fit 1.2x denser in the air wavelength (the 0.153:0.484:0.861
-  // entry's mode 9: 2.2e-2 at 2.5 per wavelength, 3.6e-3 at 3).
+  // where it misses, a second fit 1.2x denser in the air wavelength and in the data's spacing,
+  // whichever caps the nodes (a thin entry's cap is the data's: denser in the wavelength alone,
+  // the second fit was the first again).
   if (rim_layout(axes_m, settings)) {
     TransferSettings s = settings;
-    for (int fit = 0; fit < 2 && (fit == 0 || !met()); ++fit, s.sources_per_wavelength *= 1.2)
-      try_grids(rim_grids(axes_m, k, data_spacing_m, s), 1 - s.rim_inner_fraction);
+    double spacing_m = data_spacing_m;
+    for (int fit = 0; fit < 2 && (fit == 0 || !met()); ++fit, s.sources_per_wavelength *= 1.2, spacing_m /= 1.2)
+      try_grids(rim_grids(axes_m, k, spacing_m, s), 1 - s.rim_inner_fraction);
     return best;
   }
   for (double depth : settings.source_depths) {

@@ -58,9 +58,9 @@ struct ModeTransfer {
 };
 
 // The first attempt's layout at omega, without a fit: its sources and fit points (whole surface),
-// and the work of its fit in units of one complex multiply-add, fit points x sources x (sources +
-// 50) (the QR's m n^2 and the Green's functions' m n, each ~50 of them): what `plan` scales a
-// measured entry's transfer time by.
+// and the work of its fit in units of one complex multiply-add: the QR's fit points x unknowns^2
+// and ~50 per Green's function the fill and the check evaluate (green_evaluations): what `plan`
+// scales a measured entry's transfer time by.
 struct LayoutSize {
   long long sources = 0, fit_points = 0;
   double work = 0;

@@ -189,4 +189,18 @@ TEST(TransferPancakeSlow, FlatBodiesWithinTwoPercent) {
                 axes[0], axes[1], axes[2], m, kb_c, k_c, c.residual, c.far_field, c.sources);
   }
 }
+
+// The thinnest entries the patch reaches, 0.03:1:1, with exact data: the bending mode above and
+// one of m = 8 at three times the air wavenumber (the old layout, hats along rows spaced by the
+// depth: 3.1 % on the first, 952 unknowns per octant). Minutes: labelled extended.
+TEST(TransferPlateSlow, ThinnestEntryWithinTwoPercent) {
+  for (const auto& [axes, m, kb_c, k_c] : std::vector<std::tuple<std::array<double, 3>, int, double, double>>{
+           {{0.03, 1, 1}, 2, 8, 5}, {{0.03, 1, 1}, 8, 20, 15}}) {
+    const FlatCase c = flat_case(axes, m, kb_c, k_c);
+    EXPECT_LT(c.residual, 0.02) << axes[0] << ":" << axes[1] << ":" << axes[2];
+    EXPECT_LT(c.far_field, 0.02) << axes[0] << ":" << axes[1] << ":" << axes[2];
+    std::printf("%g:%g:%g, m %d, k_b c %g, k c %g: boundary residual %.2e, far field vs Kirchhoff-Helmholtz %.2e, %d unknowns\n",
+                axes[0], axes[1], axes[2], m, kb_c, k_c, c.residual, c.far_field, c.sources);
+  }
+}
 }  // namespace
