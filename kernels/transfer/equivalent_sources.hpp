@@ -32,11 +32,12 @@ struct SpreadPoint {
   }
 };
 
-// One row of samples of the spread sources, at levels of spacing: levels[0] within the row's depth (the
-// field's definition: the residual, the field and the expansion use it), each next one about 4x
-// coarser, down to one sample per node. A level spaced s integrates the row's smooth density to
-// ~e^(-2 pi D / s) at distance D, so a fit point at least kLevelDistance s from the row may use it
-// in the fill (e^(-4 pi) ~ 3.5e-6) if s is also within a tenth of the wavelength.
+// One row of samples of the spread sources, at levels of spacing: levels[0] within the row's depth
+// (the field's definition: the residual, the field and the expansion use it), each next one about
+// 4x coarser, down to one sample per panel (the stretch one coarsest sample stands for; level l
+// has size / panels samples per panel, in order). A level spaced s integrates the smooth density
+// to ~e^(-2 pi D / s) at distance D, so a point at least kLevelDistance s from a panel may see it
+// at that level in the fill (e^(-4 pi) ~ 3.5e-6), if s is also within a tenth of the wavelength.
 struct SpreadRow {
   std::vector<std::vector<SpreadPoint>> levels;
   std::vector<double> spacing_m;  // largest gap between neighbouring samples, per level
