@@ -1,4 +1,5 @@
 #include "kernels/transfer/equivalent_sources.hpp"
+#include "kernels/transfer/special_functions.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -33,10 +34,7 @@ std::array<Green, 8> image_greens(double k, const Eigen::Vector3d& x, const Eige
     r[t] = d.norm();
     dn[t] = d.dot(n);
   }
-  for (int t = 0; t < 8; ++t) {
-    c[t] = std::cos(k * r[t]);
-    sn[t] = std::sin(k * r[t]);
-  }
+  for (int t = 0; t < 8; ++t) sin_cos(k * r[t], sn[t], c[t]);
   std::array<Green, 8> out;
   for (std::size_t t = 0; t < 8; ++t) {
     const std::complex<double> e = std::complex<double>(c[t], -sn[t]) / (4 * std::numbers::pi * r[t]);

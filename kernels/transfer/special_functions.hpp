@@ -3,6 +3,7 @@
 // recurrences that stay stable at the orders a multipole expansion of a ringing proxy needs
 // (n up to a few hundred, x up to a few hundred). tests/unit/test_special_functions.cpp checks
 // them against GSL, the Wronskian and large-order and large-argument asymptotics.
+#include <cmath>
 #include <complex>
 #include <vector>
 
@@ -28,6 +29,34 @@ void spherical_hankel2_upward(int n_max, double x, std::complex<double>* out);
 
 // d/dx h_n^(2)(x) from h_{n-1} - (n + 1) / x h_n (n >= 1) and h_0' = -h_1.
 std::vector<std::complex<double>> spherical_hankel2_derivative(const std::vector<std::complex<double>>& h, double x);
+
+// sin x and cos x for the Green's functions' k r, ~4x faster than libm's sincos here (the
+// equivalent sources' fill spends most of its time in them): x reduced by the nearest multiple of
+// pi / 2 in three parts (fdlibm's pio2_1..3: n pio2_1 is exact for |n| < 2^20), then Cephes'
+// minimax polynomials on [-pi / 4, pi / 4]. Within 2.3e-16 of libm for |x| <= 1e5
+// (tests/unit/test_special_functions.cpp); libm itself beyond.
+inline void sin_cos(double x, double& sin_x, double& cos_x) {
+  if (!(std::abs(x) <= 1e5)) {
+    sin_x = std::sin(x);
+    cos_x = std::cos(x);
+    return;
+  }
+  constexpr double kTwoOverPi = 0.636619772367581343076;
+  constexpr double kPio2_1 = 1.57079632673412561417e+00, kPio2_2 = 6.07710050630396597660e-11,
+                   kPio2_3 = 2.02226624871116645580e-21;
+  const double n = std::nearbyint(x * kTwoOverPi);
+  const double y = ((x - n * kPio2_1) - n * kPio2_2) - n * kPio2_3, z = y * y;
+  const double s = y + y * z * (-1.66666666666666307295e-1 + z * (8.33333333332211858878e-3 + z * (-1.98412698295895385996e-4 +
+                   z * (2.75573136213857245213e-6 + z * (-2.50507477628578072866e-8 + z * 1.58962301576546568060e-10)))));
+  const double c = 1.0 - 0.5 * z + z * z * (4.16666666666665929218e-2 + z * (-1.38888888888730564116e-3 + z * (2.48015872888517045348e-5 +
+                   z * (-2.75573141792967388112e-7 + z * (2.08757008419747316778e-9 + z * -1.13585365213876817300e-11)))));
+  switch (static_cast<long>(n) & 3) {
+    case 0: sin_x = s; cos_x = c; break;
+    case 1: sin_x = c; cos_x = -s; break;
+    case 2: sin_x = -s; cos_x = -c; break;
+    default: sin_x = -c; cos_x = s; break;
+  }
+}
 
 // Index of (n, m), |m| <= n, in the flat arrays below: n^2 + n + m.
 constexpr int harmonic_index(int n, int m) { return n * n + n + m; }
