@@ -16,7 +16,6 @@ extern "C" void zgels_(const char* trans, const int* m, const int* n, const int*
 namespace clatter::kernels::transfer {
 namespace {
 
-
 // e^{-ikr} / (4 pi r) and its gradient in x: -(1 + ikr) e^{-ikr} / (4 pi r^3) (x - y).
 struct Green {
   std::complex<double> value, normal_derivative;
@@ -88,13 +87,12 @@ std::size_t panel_level(const SpreadRow& row, const Panel& panel, const Eigen::V
 // the points grouped by the level they see it at (the images of a sample are the loop's outer
 // work, shared by its points).
 template <class Visit>
-void for_each_sample(const SpreadRow& row, const SurfacePoints& points, const std::vector<std::size_t>& which,
-                     const LevelRule& rule, const Visit& visit) {
+void for_each_sample(const SpreadRow& row, const SurfacePoints& points, const LevelRule& rule, const Visit& visit) {
   const auto panels = panels_of(row);
   std::vector<std::vector<std::size_t>> by_level(row.levels.size());
   for (std::size_t j = 0; j < panels.size(); ++j) {
     for (auto& v : by_level) v.clear();
-    for (const std::size_t i : which) by_level[panel_level(row, panels[j], points.position_m[i], rule)].push_back(i);
+    for (std::size_t i = 0; i < points.size(); ++i) by_level[panel_level(row, panels[j], points.position_m[i], rule)].push_back(i);
     for (std::size_t l = 0; l < row.levels.size(); ++l) {
       if (by_level[l].empty()) continue;
       const std::size_t per = row.levels[l].size() / panels.size();
@@ -142,10 +140,8 @@ std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit
       });
     return a;
   }
-  std::vector<std::size_t> all(fit.size());
-  for (std::size_t i = 0; i < fit.size(); ++i) all[i] = i;
   for (const SpreadRow& row : layout.spread)
-    for_each_sample(row, fit, all, fill_rule(k), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
+    for_each_sample(row, fit, fill_rule(k), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
       const auto images = images_of(p.position_m);
       for (const std::size_t ui : near) {
         const auto g = image_greens(k, fit.position_m[ui], fit.normal[ui], images);
@@ -230,11 +226,14 @@ SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredDa
 namespace {
 
 // Per fitted class, the strengths of a level's samples: their unknowns' shares summed.
+std::complex<double> sample_strength(const SpreadPoint& sample, const ParityFit& pf) {
+  std::complex<double> v = 0;
+  for (std::size_t t = 0; t < sample.taps.size(); ++t) v += sample.weight_for(t, pf.sigma) * pf.strengths(sample.taps[t].unknown);
+  return v;
+}
 std::vector<std::complex<double>> sample_strengths(const std::vector<SpreadPoint>& samples, const ParityFit& pf) {
-  std::vector<std::complex<double>> out(samples.size(), 0.0);
-  for (std::size_t q = 0; q < samples.size(); ++q)
-    for (std::size_t t = 0; t < samples[q].taps.size(); ++t)
-      if (samples[q].taps[t].unknown >= 0) out[q] += samples[q].weight_for(t, pf.sigma) * pf.strengths(samples[q].taps[t].unknown);
+  std::vector<std::complex<double>> out;
+  for (const SpreadPoint& sample : samples) out.push_back(sample_strength(sample, pf));
   return out;
 }
 
@@ -298,16 +297,10 @@ std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const
   // The field of the finest samples, each panel taken as coarsely as field_rule allows (much
   // stricter than the fill's): the residual and the far-field checks see the sources the expansion
   // is built from, and what the fill approximated shows in the residual.
-  std::vector<std::size_t> all(m);
-  for (std::size_t i = 0; i < m; ++i) all[i] = i;
   std::vector<std::vector<std::complex<double>>> strengths(fit.classes.size(), std::vector<std::complex<double>>(1));
   for (const SpreadRow& row : layout.spread)
-    for_each_sample(row, points, all, field_rule(k_rad_m), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
-      for (std::size_t c = 0; c < fit.classes.size(); ++c) {
-        std::complex<double> v = 0;
-        for (std::size_t t = 0; t < p.taps.size(); ++t) v += p.weight_for(t, fit.classes[c].sigma) * fit.classes[c].strengths(p.taps[t].unknown);
-        strengths[c][0] = v;
-      }
+    for_each_sample(row, points, field_rule(k_rad_m), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
+      for (std::size_t c = 0; c < fit.classes.size(); ++c) strengths[c][0] = sample_strength(p, fit.classes[c]);
       add_fields(k_rad_m, {p.position_m}, strengths, points, near, out);
     });
   return out;
@@ -316,12 +309,10 @@ std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const
 double green_evaluations(double k_rad_m, const SourceLayout& layout, const SurfacePoints& fit, const SurfacePoints& check) {
   if (layout.spread.empty()) return static_cast<double>(fit.size() + check.size()) * static_cast<double>(layout.sources.size());
   double total = 0;
+  const auto count = [&](const SpreadPoint&, const std::vector<std::size_t>& near) { total += static_cast<double>(near.size()); };
   for (const SpreadRow& row : layout.spread) {
-    const auto panels = panels_of(row);
-    for (const auto& [points, rule] : {std::pair{&fit, fill_rule(k_rad_m)}, std::pair{&check, field_rule(k_rad_m)}})
-      for (const Panel& panel : panels)
-        for (const Eigen::Vector3d& x : points->position_m)
-          total += static_cast<double>(row.levels[panel_level(row, panel, x, rule)].size() / panels.size());
+    for_each_sample(row, fit, fill_rule(k_rad_m), count);
+    for_each_sample(row, check, field_rule(k_rad_m), count);
   }
   return total;
 }

@@ -114,11 +114,12 @@ double cubic_bspline(double x) {
 // B-splines on node rows in t and, along each row, nodes equally spaced in p (a row's own count).
 // The rows are equally spaced in a coordinate s(t) whose density is the arc of the outer meridians
 // (through b and through c, the denser) over min(cap sqrt(cos t), kRimTurn x their curvature
-// radius): toward the rim the plate thins as cos t and its bending wavelength shortens as the
+// radius). Toward the rim the plate thins as cos t and its bending wavelength shortens as the
 // square root of that, so a mode varies faster across the rows than along them (the 0.021:0.707:
 // 0.707 entry's 918 Hz mode: residual 2.5e-2 with rows within the cap, 1.0e-2 within cap
 // sqrt(cos t) at 12 % more unknowns); and the rim, whose normal turns through pi / 2 within a few
-// of its radii a^2 / b, gets about pi / (2 kRimTurn) rows. Beyond the octant's edges the nodes are mirror images of those inside (ghost taps,
+// of its radii a^2 / b, gets about pi / (2 kRimTurn) rows.
+// Beyond the octant's edges the nodes are mirror images of those inside (ghost taps,
 // SpreadTap::plane): across p = 0 the plane z = 0, across p = pi / 2 the plane y = 0, across the
 // rim t = pi / 2 the plane x = 0, and across the pole t = 0 the point (-t, p) is (t, p + pi), the
 // mirror image in both y and z; s(t) is odd about both ends, so the ghost rows are the mirrored
