@@ -10,7 +10,7 @@ Writes to OUTDIR:
                 the mode's multiplet (`multiplet`, by symmetry), rows labelled with the axis ratios (a/c, b/c)
   patch.png     the entries on the ellipsoid patch in (a/c, b/c), coloured by f_1 [Hz] at the
                 bank's normalized size (a^2 + b^2 + c^2 = 1 m^2), with the corners sphere (1, 1),
-                cigar (r, r) and pancake (r, 1) of r = min_ratio marked
+                cigar (r_c, r_c) and pancake (r, 1) of r = min_ratio, r_c = cigar_ratio marked
 """
 import argparse
 import os
@@ -41,6 +41,7 @@ def read_bank(path):
         s, m, sw = f["settings"].attrs, f["material"].attrs, f["sweep"].attrs
         return dict(entries=entries, material=text(m["name"]), nu=float(m["poisson"]),
                     f_max_multiple=float(s["f_max_multiple"]), min_ratio=float(s["min_ratio"]),
+                    cigar_ratio=float(s["cigar_ratio"] if "cigar_ratio" in s else s["min_ratio"]),
                     n_failed=int(sw["n_failed"]), n_missing=int(sw["n_missing"]), tasks=int(sw["tasks_total"]))
 
 
@@ -91,14 +92,18 @@ def spectra_figure(bank, out):
 
 
 def patch_figure(bank, out):
-    entries, r = bank["entries"], bank["min_ratio"]
+    entries, r, rc = bank["entries"], bank["min_ratio"], bank["cigar_ratio"]
     x = np.array([e["axes"][0] / e["axes"][2] for e in entries])
     y = np.array([e["axes"][1] / e["axes"][2] for e in entries])
     f1 = np.array([e["freq"][0] for e in entries])
     fig, ax = plt.subplots(figsize=(6.4, 5.4))
-    corners = {"sphere": (1, 1), "cigar": (r, r), "pancake": (r, 1)}
-    ax.fill([r, r, 1], [r, 1, 1], color="0.95", zorder=0)
-    ax.plot([r, r, 1, r], [r, 1, 1, r], color="0.4", linewidth=1, zorder=1)
+    corners = {"sphere": (1, 1), "cigar": (rc, rc), "pancake": (r, 1)}
+    # The edge cigar -> pancake is straight in (ln b/c, ln a/b): b/c = r_c^(1-t), a/c = b/c r^t.
+    t = np.linspace(0, 1, 65)
+    edge_x, edge_y = rc ** (1 - t) * r ** t, rc ** (1 - t)
+    bx, by = np.concatenate([[1], edge_x, [1]]), np.concatenate([[1], edge_y, [1]])
+    ax.fill(bx, by, color="0.95", zorder=0)
+    ax.plot(bx, by, color="0.4", linewidth=1, zorder=1)
     for name, (cx, cy), (dx, dy), ha in zip(corners, corners.values(), [(6, -12), (-6, -12), (-6, 6)],
                                             ["left", "right", "right"]):
         ax.plot(cx, cy, marker="s", markerfacecolor="none", markeredgecolor="0.2", markersize=11, zorder=2)
@@ -111,7 +116,7 @@ def patch_figure(bank, out):
     fig.colorbar(sc, ax=ax, label="f_1 [Hz] (a^2 + b^2 + c^2 = 1 m^2)")
     pad = 0.04 * (1 - r)
     ax.set(xlim=(r - 3 * pad, 1 + 3 * pad), ylim=(r - 3 * pad, 1 + 3 * pad), xlabel="a/c", ylabel="b/c",
-           title=f"the patch a <= b <= c, a/c >= {r:g}\n{title_of(bank)}")
+           title=f"the patch a <= b <= c, a/c >= {r:g}, cigar b/c = {rc:g}\n{title_of(bank)}")
     ax.title.set_fontsize(9)
     ax.set_aspect("equal")
     fig.tight_layout()

@@ -312,6 +312,7 @@ void write_modal_bank(const std::string& path, const model::ModalBank& bank, con
   write_attribute<double>(file, "/settings", "band_max_multiple", h.band.max_multiple);
   write_attribute<double>(file, "/settings", "elements_per_wavelength", h.elements_per_wavelength);
   write_attribute<double>(file, "/settings", "min_ratio", h.min_ratio);
+  write_attribute<double>(file, "/settings", "cigar_ratio", h.cigar_ratio);
   write_attribute<double>(file, "/settings", "cluster_gap", h.solve.cluster_gap);
   write_attribute<double>(file, "/settings", "degenerate_gap", h.solve.degenerate_gap);
   write_attribute<std::int32_t>(file, "/settings", "reference_fields", kernels_reference_fields);
@@ -354,6 +355,9 @@ model::ModalBank read_modal_bank(const std::string& path) {
   h.band.max_multiple = read_attribute<double>(file, "/settings", "band_max_multiple");
   h.elements_per_wavelength = read_attribute<double>(file, "/settings", "elements_per_wavelength");
   h.min_ratio = read_attribute<double>(file, "/settings", "min_ratio");
+  // Banks before the patch had two corners: its cigar lay at a/c = min_ratio too.
+  h.cigar_ratio = has_attribute(file, "/settings", "cigar_ratio") ? read_attribute<double>(file, "/settings", "cigar_ratio")
+                                                                  : h.min_ratio;
   h.solve.cluster_gap = read_attribute<double>(file, "/settings", "cluster_gap");
   h.solve.degenerate_gap = read_attribute<double>(file, "/settings", "degenerate_gap");
   h.coarse_edge_m = read_attribute<double>(file, "/settings", "coarse_edge_m");

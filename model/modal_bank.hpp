@@ -187,7 +187,8 @@ struct ModalBankHeader {
   ModalSolveSettings solve;              // solve.f_max_multiple: the smallest k of any entry
   BandRule band;
   double elements_per_wavelength = 0;  // h = shear wavelength at f_max / this
-  double min_ratio = 0;                // smallest a/c of the sampled patch
+  double min_ratio = 0;                // smallest a/c of the sampled patch (its pancake corner, b = c)
+  double cigar_ratio = 0;              // b/c of its cigar corner (a = b): kernels/modal/patch_sampling.hpp
   double coarse_edge_m = 0;            // h of the pre-solve that estimates f_1
   double elements_through_thickness = 0;         // h <= 2 a / this (a the smallest semi-axis), fine mesh
   double coarse_elements_through_thickness = 0;  // the same cap on the pre-solve's mesh

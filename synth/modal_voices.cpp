@@ -10,6 +10,7 @@
 #include "io/mesh.hpp"
 #include "io/modal_bank.hpp"
 #include "io/object_bank.hpp"
+#include "kernels/modal/patch_sampling.hpp"
 #include "kernels/rigid_body.hpp"
 #include "kernels/transfer/multipole.hpp"
 #include "synth/modal_source.hpp"
@@ -301,12 +302,13 @@ std::vector<std::string> ModalSource::coverage(const std::vector<ObjectModel>& m
                          v.base_frequency_hz, v.base_frequency_from, options_.proxy_above_hz, v.own_model_missing);
     if (!v.own_model) {
       const auto& u = v.frame.unit_axes;  // a <= b <= c
-      const double ratio = u[0] / u[2], min_ratio = banks_[v.bank].header.min_ratio;
-      if (ratio < min_ratio * (1 - 1e-9))
-        line += fmt::format("{}axis ratio a/c = {:.3f} is outside modal bank '{}''s patch (a/c >= {}): it rings with the nearest "
-                            "entry's mode shapes, scaled to its base frequency {:.4g} Hz (from the {})",
-                            line.empty() ? "" : "; and its ", ratio, names_[v.bank], min_ratio, v.base_frequency_hz,
-                            v.base_frequency_from);
+      const auto& h = banks_[v.bank].header;
+      if (!kernels::modal::patch_violation({u[0], u[1], u[2]}, {h.min_ratio, h.cigar_ratio}, 1e-9).empty())
+        line += fmt::format("{}shape a/c = {:.3f}, b/c = {:.3f} is outside modal bank '{}''s patch (a/c >= {}, the cigar at "
+                            "b/c = {}): it rings with the nearest entry's mode shapes, scaled to its base frequency {:.4g} Hz "
+                            "(from the {})",
+                            line.empty() ? "" : "; and its ", u[0] / u[2], u[1] / u[2], names_[v.bank], h.min_ratio,
+                            h.cigar_ratio, v.base_frequency_hz, v.base_frequency_from);
     }
     if (v.band_short)
       line += fmt::format("{}modes reach {:.4g} Hz of the top {:.4g} Hz: {:.0f} % of its audible band from {:.4g} Hz (in "

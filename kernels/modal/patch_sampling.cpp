@@ -15,7 +15,7 @@
 namespace clatter::kernels::modal {
 namespace {
 
-// Integer coordinates (i, j) on the initial grid refined 2^max_level times: u = ln r * i / N,
+// Integer coordinates (i, j) on the initial grid refined 2^max_level times: u = ln r_c * i / N,
 // v = ln r * j / N with N = initial_divisions * 2^max_level; the patch is i, j >= 0, i + j <= N.
 using Lattice = std::array<int, 2>;
 using Edge = std::pair<int, int>;  // sample indices, first < second
@@ -34,8 +34,8 @@ std::string number(double x) {
 }
 
 void check_settings(const PatchSamplingSettings& s) {
-  if (!(s.min_ratio > 0 && s.min_ratio < 1))
-    throw std::invalid_argument("patch sampling: min_ratio must be in (0, 1), got " + number(s.min_ratio));
+  if (const std::string why = corners_violation(s.corners); !why.empty())
+    throw std::invalid_argument("patch sampling: " + why);
   if (s.initial_divisions < 1 || s.initial_divisions > kMaxDivisions)
     throw std::invalid_argument("patch sampling: initial_divisions must be in [1, 4096], got " +
                                 std::to_string(s.initial_divisions));
@@ -51,7 +51,8 @@ class Sampler {
       : settings_(settings),
         features_(features),
         lattice_n_(settings.initial_divisions * (1 << settings.max_level)),
-        log_min_ratio_(std::log(settings.min_ratio)) {}
+        log_cigar_ratio_(std::log(settings.corners.cigar_ratio)),
+        log_min_ratio_(std::log(settings.corners.min_ratio)) {}
 
   PatchSampling run() {
     initial_grid();
@@ -71,8 +72,7 @@ class Sampler {
     auto [it, inserted] = index_of_.try_emplace(p, static_cast<int>(lattice_.size()));
     if (inserted) {
       lattice_.push_back(p);
-      const double scale = log_min_ratio_ / lattice_n_;
-      out_.samples.push_back(axes_from_log_ratios(scale * p[0], scale * p[1]));
+      out_.samples.push_back(axes_from_log_ratios(log_cigar_ratio_ * p[0] / lattice_n_, log_min_ratio_ * p[1] / lattice_n_));
       out_.level.push_back(level);
     }
     return it->second;
@@ -171,7 +171,7 @@ class Sampler {
   const PatchSamplingSettings& settings_;
   const FeatureBatch& features_;
   const int lattice_n_;
-  const double log_min_ratio_;
+  const double log_cigar_ratio_, log_min_ratio_;
   PatchSampling out_;
   std::vector<Lattice> lattice_;  // per sample
   std::map<Lattice, int> index_of_;
@@ -197,9 +197,17 @@ std::array<double, 2> log_ratios(const Axes& axes) {
   return {std::log(axes[1] / axes[2]), std::log(axes[0] / axes[1])};
 }
 
-std::string patch_violation(const Axes& axes, double min_ratio, double tolerance) {
-  if (!(min_ratio > 0 && min_ratio < 1))
-    throw std::invalid_argument("patch_violation: min_ratio must be in (0, 1), got " + number(min_ratio));
+std::string corners_violation(const PatchCorners& corners) {
+  if (!(corners.min_ratio > 0 && corners.min_ratio < 1)) return "min_ratio must be in (0, 1), got " + number(corners.min_ratio);
+  if (!(corners.cigar_ratio >= corners.min_ratio && corners.cigar_ratio < 1))
+    return "cigar_ratio must be in [min_ratio, 1) = [" + number(corners.min_ratio) + ", 1), got " +
+           number(corners.cigar_ratio);
+  return {};
+}
+
+std::string patch_violation(const Axes& axes, const PatchCorners& corners, double tolerance) {
+  if (const std::string why = corners_violation(corners); !why.empty())
+    throw std::invalid_argument("patch_violation: " + why);
   static constexpr const char* kName[3] = {"a", "b", "c"};
   for (int k = 0; k < 3; ++k) {
     if (!std::isfinite(axes[k])) return std::string("axis ") + kName[k] + " is not finite (" + number(axes[k]) + ")";
@@ -210,8 +218,13 @@ std::string patch_violation(const Axes& axes, double min_ratio, double tolerance
     return "axes not ascending (a <= b <= c): " + number(a_m) + ", " + number(b_m) + ", " + number(c_m);
   const double norm2 = a_m * a_m + b_m * b_m + c_m * c_m;
   if (std::abs(norm2 - 1) > tolerance) return "off the unit sphere: a^2 + b^2 + c^2 = " + number(norm2);
-  if (a_m / c_m < min_ratio * (1 - tolerance))
-    return "a/c = " + number(a_m / c_m) + " below min_ratio " + number(min_ratio);
+  if (a_m / c_m < corners.min_ratio * (1 - tolerance))
+    return "a/c = " + number(a_m / c_m) + " below min_ratio " + number(corners.min_ratio);
+  // The edge from the cigar to the pancake; with equal corners it is the line a/c = min_ratio above.
+  if (std::log(b_m / c_m) / std::log(corners.cigar_ratio) + std::log(a_m / b_m) / std::log(corners.min_ratio) >
+      1 + tolerance)
+    return "b/c = " + number(b_m / c_m) + ", a/c = " + number(a_m / c_m) + " beyond the patch's edge from the cigar (b/c = " +
+           number(corners.cigar_ratio) + ") to the pancake (a/c = " + number(corners.min_ratio) + ")";
   return {};
 }
 

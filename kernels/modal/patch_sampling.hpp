@@ -1,10 +1,14 @@
 #pragma once
 // Adaptive sampling of the modal soundbank's ellipsoid patch (paper §5.2-5.3, Fig. 8): semi-axes
-// a <= b <= c with a^2 + b^2 + c^2 = 1 m^2 (scale removed by eq. 11), a/c >= min_ratio.
+// a <= b <= c with a^2 + b^2 + c^2 = 1 m^2 (scale removed by eq. 11), from the sphere to a thin
+// pancake (a/c = min_ratio, b = c) and a thin cigar (b/c = cigar_ratio, a = b).
 //
-// Coordinates. The patch is parameterized by the log ratios u = ln(b/c) <= 0, v = ln(a/b) <= 0,
-// u + v = ln(a/c) >= ln r (r = min_ratio): the triangle with corners sphere (0, 0), cigar (ln r, 0)
-// and pancake (0, ln r). Why logs: the frequencies of plates and rods are powers of the axis
+// Coordinates. The patch is parameterized by the log ratios u = ln(b/c) <= 0, v = ln(a/b) <= 0: it
+// is the triangle with corners sphere (0, 0), cigar (ln r_c, 0) and pancake (0, ln r) (r =
+// min_ratio, r_c = cigar_ratio), u / ln r_c + v / ln r <= 1. With r_c = r that is a/c >= r. The
+// two corners are separate because debris is flat (003 Fig. 9): fracture makes plates far thinner
+// than it makes needles (docs/modal.md "Sampling the patch" measures both), and a needle is the
+// harder entry to mesh. Why logs: the frequencies of plates and rods are powers of the axis
 // ratios (a thin plate's bending frequency goes as thickness / width^2, a rod's as thickness /
 // length^2), so ln f is close to linear in (u, v) and a relative frequency change, exp(|d ln f|) - 1,
 // is near-uniform over the plane: one edge length fits the whole patch for a pure power law, and
@@ -41,13 +45,22 @@ Axes axes_from_log_ratios(double u, double v);
 // {ln(b/c), ln(a/b)} of positive axes (std::invalid_argument otherwise).
 std::array<double, 2> log_ratios(const Axes& axes);
 
+// The patch's two thin corners (the header's triangle).
+struct PatchCorners {
+  double min_ratio = 0.1;    // a/c of the pancake corner (b = c): the smallest a/c of the patch, in (0, 1)
+  double cigar_ratio = 0.1;  // b/c (= a/c) of the cigar corner (a = b), in [min_ratio, 1)
+};
+// Why the corners do not make a patch, empty if they do.
+std::string corners_violation(const PatchCorners& corners);
+
 // Why `axes` is not a patch point, empty if it is: an axis not finite or not positive; not
 // ascending (beyond a relative `tolerance`); off the unit sphere (|a^2 + b^2 + c^2 - 1| >
-// tolerance); a/c below min_ratio (by more than a relative `tolerance`). min_ratio must be in (0, 1).
-std::string patch_violation(const Axes& axes, double min_ratio, double tolerance = 1e-9);
+// tolerance); a/c below min_ratio, or beyond the edge from the cigar to the pancake corner (by more
+// than a relative `tolerance`). std::invalid_argument if the corners are not a patch.
+std::string patch_violation(const Axes& axes, const PatchCorners& corners, double tolerance = 1e-9);
 
 struct PatchSamplingSettings {
-  double min_ratio = 0.1;      // smallest a/c covered, in (0, 1)
+  PatchCorners corners;
   int initial_divisions = 2;   // the log-ratio triangle cut into n^2 triangles at level 0
   double tolerance = 0.1;      // largest allowed relative change of a feature along an edge
   int max_level = 4;           // refinement levels beyond the initial grid (0..16)

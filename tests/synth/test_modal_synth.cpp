@@ -451,3 +451,30 @@ TEST(ModalSynth, AnObjectGivenByAMeshIsBoundedByTheMeshsArea) {
   EXPECT_NEAR(v.surface_ratio, area_box / area_proxy, 1e-12 * area_box / area_proxy);
   EXPECT_NEAR(v.transfer_bound, std::sqrt(area_box / area_proxy), 1e-9);
 }
+
+// The coverage report's patch test (docs/synth.md "Coverage"): a bank whose patch reaches a/c =
+// 0.025 at its pancake but keeps its cigar at b/c = 0.3 covers a thin plate (a/c = 0.05, b = c)
+// and names a needle (a = b, b/c = 0.067: its a/c is above 0.025, so only the edge between the
+// corners excludes it); with both corners at 0.025 (the patch a/c >= 0.025) the needle is inside.
+TEST(ModalSynth, CoverageNamesShapesBeyondTheCigarCorner) {
+  model::ModalBank bank = sphere_bank();
+  bank.header.min_ratio = 0.025;
+  const auto outside_line = [&bank](double a, double b, double c) {
+    const io::Scene scene = ellipsoid_scene(a, b, c);
+    const auto models = synth::object_models(scene, "");
+    synth::ModalSource modal({bank}, {"bank"});
+    modal.begin(scene, models, 44100);
+    for (const auto& line : modal.coverage(models))
+      if (line.find("outside modal bank 'bank''s patch") != std::string::npos) return line;
+    return std::string();
+  };
+  bank.header.cigar_ratio = 0.3;
+  const std::string needle = outside_line(0.02, 0.02, 0.3);
+  EXPECT_NE(needle.find("a/c = 0.067, b/c = 0.067"), std::string::npos) << needle;
+  EXPECT_NE(needle.find("the cigar at b/c = 0.3"), std::string::npos) << needle;
+  EXPECT_EQ(outside_line(0.015, 0.3, 0.3), "");  // the plate, a/c = 0.05
+  EXPECT_NE(outside_line(0.006, 0.3, 0.3), "");  // a plate past the pancake, a/c = 0.02
+  bank.header.cigar_ratio = 0.025;
+  EXPECT_EQ(outside_line(0.02, 0.02, 0.3), "");
+  std::printf("coverage: %s\n", needle.c_str());
+}

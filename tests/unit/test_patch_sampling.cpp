@@ -48,17 +48,20 @@ std::map<Edge, int> edge_counts(const PatchSampling& s) {
   return count;
 }
 
-bool on_boundary(const std::array<double, 2>& p, const std::array<double, 2>& q, double log_r) {
+// On the patch's boundary: u = 0, v = 0, or the edge u / ln r_c + v / ln r = 1 from the cigar to
+// the pancake.
+bool on_boundary(const std::array<double, 2>& p, const std::array<double, 2>& q, const PatchCorners& corners) {
   auto near = [](double x, double y) { return std::abs(x - y) < 1e-9; };
+  const double lc = std::log(corners.cigar_ratio), lr = std::log(corners.min_ratio);
   return (near(p[0], 0) && near(q[0], 0)) || (near(p[1], 0) && near(q[1], 0)) ||
-         (near(p[0] + p[1], log_r) && near(q[0] + q[1], log_r));
+         (near(p[0] / lc + p[1] / lr, 1) && near(q[0] / lc + q[1] / lr, 1));
 }
 
 // Conforming: every edge on the patch boundary in one triangle, every other in two; all triangles
-// counter-clockwise; their areas sum to the patch triangle's, (ln r)^2 / 2.
-void expect_conforming(const PatchSampling& s, double log_r) {
+// counter-clockwise; their areas sum to the patch triangle's, ln r_c ln r / 2.
+void expect_conforming(const PatchSampling& s, const PatchCorners& corners = {}) {
   for (const auto& [e, count] : edge_counts(s)) {
-    const bool boundary = on_boundary(log_ratios(s.samples[e.first]), log_ratios(s.samples[e.second]), log_r);
+    const bool boundary = on_boundary(log_ratios(s.samples[e.first]), log_ratios(s.samples[e.second]), corners);
     EXPECT_EQ(count, boundary ? 1 : 2) << "edge " << e.first << "-" << e.second;
   }
   double area = 0;
@@ -68,7 +71,7 @@ void expect_conforming(const PatchSampling& s, double log_r) {
     EXPECT_GT(twice, 0);
     area += twice / 2;
   }
-  EXPECT_NEAR(area, log_r * log_r / 2, 1e-10);
+  EXPECT_NEAR(area, std::log(corners.cigar_ratio) * std::log(corners.min_ratio) / 2, 1e-10);
 }
 
 // The criterion on every final edge: the reported worst change and count are the edges' own, and
@@ -90,14 +93,14 @@ void expect_criterion(const PatchSampling& s, const PatchSamplingSettings& setti
   }
 }
 
-void expect_patch_points(const PatchSampling& s, double min_ratio) {
+void expect_patch_points(const PatchSampling& s, const PatchCorners& corners) {
   std::set<Axes> unique(s.samples.begin(), s.samples.end());
   EXPECT_EQ(unique.size(), s.samples.size());
   ASSERT_EQ(s.features.size(), s.samples.size());
   ASSERT_EQ(s.level.size(), s.samples.size());
   for (std::size_t i = 0; i < s.samples.size(); ++i) {
     const auto& x = s.samples[i];
-    EXPECT_EQ(patch_violation(x, min_ratio), "") << "sample " << i;
+    EXPECT_EQ(patch_violation(x, corners), "") << "sample " << i;
     EXPECT_NEAR(x[0] * x[0] + x[1] * x[1] + x[2] * x[2], 1, 1e-12);
     if (i > 0) {
       EXPECT_LE(s.level[i - 1], s.level[i]);
@@ -138,7 +141,7 @@ TEST(PatchSampling, LogRatiosRoundTripAndCorners) {
   const Axes cigar = axes_from_log_ratios(std::log(r), 0);
   EXPECT_EQ(cigar[0], cigar[1]);
   EXPECT_NEAR(cigar[1], r * cigar[2], 1e-15);
-  for (const auto& x : {sphere, pancake, cigar}) EXPECT_EQ(patch_violation(x, r), "");
+  for (const auto& x : {sphere, pancake, cigar}) EXPECT_EQ(patch_violation(x, {r, r}), "");
   EXPECT_THROW(axes_from_log_ratios(0.1, 0), std::invalid_argument);
   EXPECT_THROW(axes_from_log_ratios(0, std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
   EXPECT_THROW(log_ratios({0, 1, 1}), std::invalid_argument);
@@ -149,16 +152,47 @@ TEST(PatchSampling, ViolationNamesTheProblem) {
   auto has = [](const std::string& message, const char* word) {
     return message.find(word) != std::string::npos;
   };
-  EXPECT_TRUE(has(patch_violation({-0.1, 0.5, 0.86}, 0.1), "not positive"));
-  EXPECT_TRUE(has(patch_violation({0, 0.5, 0.86}, 0.1), "not positive"));
-  EXPECT_TRUE(has(patch_violation({s3, nan, s3}, 0.1), "not finite"));
-  EXPECT_TRUE(has(patch_violation({0.6, 0.5, 0.62449979983983983}, 0.1), "not ascending"));
-  EXPECT_TRUE(has(patch_violation({0.5, 0.6, 0.7}, 0.1), "unit sphere"));
+  EXPECT_TRUE(has(patch_violation({-0.1, 0.5, 0.86}, {0.1, 0.1}), "not positive"));
+  EXPECT_TRUE(has(patch_violation({0, 0.5, 0.86}, {0.1, 0.1}), "not positive"));
+  EXPECT_TRUE(has(patch_violation({s3, nan, s3}, {0.1, 0.1}), "not finite"));
+  EXPECT_TRUE(has(patch_violation({0.6, 0.5, 0.62449979983983983}, {0.1, 0.1}), "not ascending"));
+  EXPECT_TRUE(has(patch_violation({0.5, 0.6, 0.7}, {0.1, 0.1}), "unit sphere"));
   const Axes thin = axes_from_log_ratios(std::log(0.2), std::log(0.4));  // a/c = 0.08
-  EXPECT_TRUE(has(patch_violation(thin, 0.1), "below min_ratio"));
-  EXPECT_EQ(patch_violation(thin, 0.08), "");
-  EXPECT_EQ(patch_violation({s3, s3, s3}, 0.1), "");
-  EXPECT_THROW(patch_violation({s3, s3, s3}, 0), std::invalid_argument);
+  EXPECT_TRUE(has(patch_violation(thin, {0.1, 0.1}), "below min_ratio"));
+  EXPECT_EQ(patch_violation(thin, {0.08, 0.08}), "");
+  EXPECT_EQ(patch_violation({s3, s3, s3}, {0.1, 0.1}), "");
+  EXPECT_THROW(patch_violation({s3, s3, s3}, {0, 0}), std::invalid_argument);
+}
+
+// A patch whose cigar is blunter than its pancake (b/c = 0.1 there, a/c = 0.025 at the pancake):
+// the corners are where they are asked, the edge between them is the patch's (its midpoint in
+// log ratios inside, a step past it outside, which a/c alone cannot tell: the step's a/c is above
+// 0.025), and the sampling triangulates exactly that triangle.
+TEST(PatchSampling, TwoCornersMakeTheTriangleBetweenThem) {
+  const PatchCorners corners{0.025, 0.1};
+  const double lr = std::log(corners.min_ratio), lc = std::log(corners.cigar_ratio);
+  const Axes cigar = axes_from_log_ratios(lc, 0), pancake = axes_from_log_ratios(0, lr);
+  EXPECT_NEAR(cigar[1] / cigar[2], 0.1, 1e-15);
+  EXPECT_NEAR(pancake[0] / pancake[2], 0.025, 1e-15);
+  const Axes middle = axes_from_log_ratios(lc / 2, lr / 2);  // a/c = sqrt(0.1 x 0.025) = 0.05
+  EXPECT_NEAR(middle[0] / middle[2], 0.05, 1e-15);
+  const Axes beyond = axes_from_log_ratios(0.55 * lc, 0.55 * lr);  // a/c = 0.037
+  for (const auto& x : {cigar, pancake, middle}) EXPECT_EQ(patch_violation(x, corners), "");
+  EXPECT_NE(patch_violation(beyond, corners).find("beyond the patch's edge from the cigar"), std::string::npos)
+      << patch_violation(beyond, corners);
+  EXPECT_EQ(patch_violation(beyond, {0.025, 0.025}), "");  // equal corners: a/c >= 0.025 only
+  EXPECT_NE(patch_violation(cigar, {0.025, 0.2}), "");      // a cigar blunter than this one's
+  EXPECT_THROW(patch_violation(cigar, {0.1, 0.05}), std::invalid_argument);
+  EXPECT_NE(corners_violation({0.1, 0.05}).find("cigar_ratio must be in [min_ratio, 1)"), std::string::npos);
+
+  PatchSamplingSettings settings;
+  settings.corners = corners;
+  const auto s = sample_patch(settings, batch_of(power_law));
+  expect_patch_points(s, corners);
+  expect_conforming(s, corners);
+  expect_criterion(s, settings);
+  std::set<Axes> samples(s.samples.begin(), s.samples.end());
+  EXPECT_TRUE(samples.count(cigar) && samples.count(pancake) && samples.count(axes_from_log_ratios(0, 0)));
 }
 
 // NVB's grids are criss-cross: after k levels of uniform refinement the legs are h / 2^k (h =
@@ -171,8 +205,8 @@ TEST(PatchSampling, PowerLawMeetsToleranceWithKnownChanges) {
   PatchSamplingSettings settings;
   settings.max_level = 5;
   const auto s = sample_patch(settings, batch_of(power_law));
-  expect_patch_points(s, settings.min_ratio);
-  expect_conforming(s, kLogR);
+  expect_patch_points(s, settings.corners);
+  expect_conforming(s);
   expect_criterion(s, settings);
   for (const auto& [e, count] : edge_counts(s)) {
     const auto p = log_ratios(s.samples[e.first]), q = log_ratios(s.samples[e.second]);
@@ -192,7 +226,7 @@ TEST(PatchSampling, PowerLawMeetsToleranceWithKnownChanges) {
 TEST(PatchSampling, MaxLevelLeavesEdgesOverTolerance) {
   const PatchSamplingSettings settings;  // max_level 4: the (1, 1) diagonals above stay over
   const auto s = sample_patch(settings, batch_of(power_law));
-  expect_conforming(s, kLogR);
+  expect_conforming(s);
   expect_criterion(s, settings);
   const double h = -kLogR / 2;
   EXPECT_NEAR(s.worst_change, std::exp(2 * h / 16) - 1, 1e-12);
@@ -215,7 +249,7 @@ TEST(PatchSampling, StopsWhenWithinTolerance) {
   EXPECT_EQ(s.samples.size(), 6u);
   EXPECT_EQ(s.triangles.size(), 4u);
   EXPECT_NEAR(s.worst_change, std::exp(-kLogR / 2) - 1, 1e-12);
-  expect_conforming(s, kLogR);
+  expect_conforming(s);
   expect_criterion(s, settings);
 }
 
@@ -223,8 +257,8 @@ TEST(PatchSampling, RefinesTowardTheFastCorner) {
   const PatchSamplingSettings settings;
   for (bool cigar : {true, false}) {
     const auto s = sample_patch(settings, batch_of(cigar ? cigar_pole : pancake_pole));
-    expect_patch_points(s, settings.min_ratio);
-    expect_conforming(s, kLogR);
+    expect_patch_points(s, settings.corners);
+    expect_conforming(s);
     expect_criterion(s, settings);
     const auto at_cigar = levels_near(s, kLogR, 0, 0.6), at_pancake = levels_near(s, 0, kLogR, 0.6);
     const auto& fast = cigar ? at_cigar : at_pancake;
@@ -268,7 +302,7 @@ TEST(PatchSampling, RejectsBadSettingsAndFeatures) {
     return s;
   };
   const auto f = batch_of(power_law);
-  EXPECT_THROW(sample_patch(with([](auto& s) { s.min_ratio = 1; }), f), std::invalid_argument);
+  EXPECT_THROW(sample_patch(with([](auto& s) { s.corners.min_ratio = 1; }), f), std::invalid_argument);
   EXPECT_THROW(sample_patch(with([](auto& s) { s.initial_divisions = 0; }), f), std::invalid_argument);
   EXPECT_THROW(sample_patch(with([](auto& s) { s.tolerance = 0; }), f), std::invalid_argument);
   EXPECT_THROW(sample_patch(with([](auto& s) { s.max_level = 17; }), f), std::invalid_argument);
@@ -288,8 +322,8 @@ TEST(PatchSampling, SampleCountsWithDefaults) {
       PatchSamplingSettings settings;
       settings.max_level = max_level;
       const auto s = sample_patch(settings, batch_of(formula));
-      expect_patch_points(s, settings.min_ratio);
-      expect_conforming(s, kLogR);
+      expect_patch_points(s, settings.corners);
+      expect_conforming(s);
       expect_criterion(s, settings);
       const int top = *std::max_element(s.level.begin(), s.level.end());
       std::printf("max_level %d, %-31s %5zu samples, %5zu triangles, top level %d, worst change %.4f, %d edges over\n",
