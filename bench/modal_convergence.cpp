@@ -2,7 +2,9 @@
 // modal bank's mesh (banks/modal/modal_job.hpp mesh_entry) at a given h and number of quadratic
 // elements through the thinnest axis, for the convergence tables of docs/modal.md ("Defaults and
 // why"). One rank; the lowest eigenpairs above the rigid motions by one shift-and-invert solve.
-//   clatter-modal-convergence A,B,C ELEMENTS_THROUGH_THICKNESS H_M [DISTINCT]   (A,B,C proportional)
+//   clatter-modal-convergence A,B,C ELEMENTS_THROUGH_THICKNESS H_M [DISTINCT] [KEY=VALUE ...] [--estimate]
+// (A,B,C proportional; KEY=VALUE sets a modal config key, e.g. mesh.layered_below_ratio=0;
+// --estimate: the pre-solve's mesh of that h, as the bank's estimate_first_mode makes it)
 // prints one line: dofs, mesh/assembly/solve seconds, worst relative residual, then the first
 // DISTINCT (default 10) distinct frequencies [Hz] (modes closer than modes.cluster_gap are one).
 #include <fmt/format.h>
@@ -13,6 +15,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "banks/modal/modal_fem.hpp"
 #include "banks/modal/modal_job.hpp"
@@ -28,9 +31,11 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-int run(const std::string& axes_text, double through, double h_m, int distinct) {
+int run(const std::string& axes_text, double through, double h_m, int distinct, const std::vector<std::string>& sets,
+        bool estimate) {
   io::Config config(jobs::modal_schema());
   config.set("patch.min_ratio=0.01");
+  for (const auto& s : sets) config.set(s);
   double a = 0, b = 0, c = 0;
   if (std::sscanf(axes_text.c_str(), "%lf,%lf,%lf", &a, &b, &c) != 3) throw std::invalid_argument("A,B,C: three numbers");
   const double norm = std::sqrt(a * a + b * b + c * c);  // proportional axes, normalized here
@@ -38,7 +43,7 @@ int run(const std::string& axes_text, double through, double h_m, int distinct) 
   const jobs::ModalSpec spec = jobs::make_modal_spec(config);
   const auto& axes = spec.samples_m.front();
   auto t0 = std::chrono::steady_clock::now();
-  const auto mesh = jobs::mesh_entry(spec, axes, h_m, through);
+  const auto mesh = jobs::mesh_entry(spec, axes, h_m, through, estimate ? jobs::MeshFor::estimate : jobs::MeshFor::entry);
   const double mesh_s = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
   const auto model = jobs::assemble_fem(MPI_COMM_SELF, mesh.mesh, spec.header.material);
@@ -75,7 +80,7 @@ int run(const std::string& axes_text, double through, double h_m, int distinct) 
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fputs("usage: clatter-modal-convergence A,B,C ELEMENTS_THROUGH_THICKNESS H_M [DISTINCT]\n", stderr);
+    std::fputs("usage: clatter-modal-convergence A,B,C ELEMENTS_THROUGH_THICKNESS H_M [DISTINCT] [KEY=VALUE ...] [--estimate]\n", stderr);
     return 2;
   }
   MPI_Init(&argc, &argv);
@@ -83,7 +88,19 @@ int main(int argc, char** argv) {
   {
     const petsc::Session session(MPI_COMM_SELF);
     try {
-      rc = run(argv[1], std::stod(argv[2]), std::stod(argv[3]), argc > 4 ? std::stoi(argv[4]) : 10);
+      int distinct = 10;
+      std::vector<std::string> sets;
+      bool estimate = false;
+      for (int i = 4; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--estimate")
+          estimate = true;
+        else if (arg.find('=') != std::string::npos)
+          sets.push_back(arg);
+        else
+          distinct = std::stoi(arg);
+      }
+      rc = run(argv[1], std::stod(argv[2]), std::stod(argv[3]), distinct, sets, estimate);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "clatter-modal-convergence: %s\n", e.what());
       rc = 1;

@@ -207,8 +207,11 @@ clatter_error_test(bad_modal_axes_order 0 "patch.samples[0] = [0.7, 0.5, 0.5];no
                    modal "--set=patch.samples=[[0.7, 0.5, 0.5]]" -o out.h5)
 clatter_error_test(bad_modal_off_sphere 0 "patch.samples[0];off the unit sphere"
                    modal "--set=patch.samples=[[0.5, 0.5, 0.5]]" -o out.h5)
-clatter_error_test(bad_modal_below_min_ratio 0 "patch.samples[0];below min_ratio 0.1"
-                   modal "--set=patch.samples=[[0.05, 0.5, 0.8645808232895291]]" -o out.h5)
+clatter_error_test(bad_modal_below_min_ratio 0 "patch.samples[0];below min_ratio 0.025"
+                   modal "--set=patch.samples=[[0.015, 0.7, 0.7139852939661994]]" -o out.h5)
+# a/c = 0.06 is above min_ratio, but a needle with b/c = 0.06 lies beyond the cigar (b/c = 0.1).
+clatter_error_test(bad_modal_beyond_cigar 0 "patch.samples[0];beyond the patch's edge from the cigar (b/c = 0.1)"
+                   modal "--set=patch.samples=[[0.06, 0.06, 0.996393496566492]]" -o out.h5)
 clatter_error_test(bad_modal_zero_axis 0 "'patch.samples';every element must be in (0, 1]"
                    modal "--set=patch.samples=[[0, 0.7071067811865476, 0.7071067811865476]]" -o out.h5)
 clatter_error_test(bad_modal_duplicate_sample 0 "patch.samples[1];the same ellipsoid as patch.samples[0]"

@@ -38,7 +38,10 @@ const io::Schema& modal_schema() {
           {"material.name", std::string("glass"), "material of the bank: a table of material.table"},
           {"material.table", std::string(""), "materials file (TOML, docs/materials.md); empty: the built-in "
                                               "configs/materials.toml"},
-          {"patch.min_ratio", 0.1, "smallest axis ratio a/c covered (the pancake and cigar corners)",
+          {"patch.min_ratio", 0.025, "smallest axis ratio a/c covered (the pancake corner, b = c)",
+           {0.0, 1.0, true, true}},
+          {"patch.cigar_ratio", 0.1, "b/c of the cigar corner (a = b); below patch.min_ratio it is raised to it (the "
+                                     "patch is then a/c >= patch.min_ratio)",
            {0.0, 1.0, true, true}},
           {"patch.samples", default_samples(), "normalized semi-axes a <= b <= c, a^2 + b^2 + c^2 = 1 [m], one entry "
                                                "each (default: modal-samples output)", {0.0, 1.0, true}, {}, 3},
@@ -60,7 +63,7 @@ const io::Schema& modal_schema() {
            {0.0, 1.0, true}},
           {"mesh.elements_through_thickness", 3.0, "and h at most 2 a / this (a the smallest semi-axis; 10-node "
            "tetrahedra hold bending exactly)", {0.5, 20.0}},
-          {"mesh.coarse_elements_through_thickness", 3.0, "the same cap on the pre-solve's mesh", {0.5, 20.0}},
+          {"mesh.coarse_elements_through_thickness", 1.5, "the same cap on the pre-solve's mesh", {0.5, 20.0}},
           {"mesh.layered_below_ratio", 0.19, "entries whose a / b is below this are meshed in layers through the "
            "thickness, with the in-plane h from the bending wavelength at f_max (docs/modal.md \"Thin entries\"); 0: "
            "every entry by TetGen's fill", {0.0, 1.0}},
@@ -132,6 +135,8 @@ ModalSpec make_modal_spec(const io::Config& config) {
                                  "material's Rayleigh damping",
                                  spec.material_table, h.material.name));
   h.min_ratio = config.real("patch.min_ratio");
+  // The cigar's b/c is its a/c: below min_ratio it would leave the patch's a/c >= min_ratio.
+  h.cigar_ratio = std::max(config.real("patch.cigar_ratio"), h.min_ratio);
   h.solve = solve_settings(config);
   h.solve.f_max_multiple = config.real("modes.f_max_multiple");
   h.band = {config.real("modes.top_hz"), config.real("modes.largest_piece_m"), config.real("modes.proxy_above_hz"),
@@ -157,10 +162,10 @@ ModalSpec make_modal_spec(const io::Config& config) {
     throw InputError(fmt::format("patch.samples: {} ellipsoids; at most {}", list.size() / 3, kMaxSamples));
   for (std::size_t i = 0; i + 2 < list.size(); i += 3) {
     const std::array<double, 3> axes{list[i], list[i + 1], list[i + 2]};
-    const std::string why = kernels::modal::patch_violation(axes, h.min_ratio, 1e-6);
+    const std::string why = kernels::modal::patch_violation(axes, {h.min_ratio, h.cigar_ratio}, 1e-6);
     if (!why.empty())
-      throw InputError(fmt::format("patch.samples[{}] = [{}, {}, {}]: {} (patch.min_ratio = {})", i / 3, axes[0],
-                                   axes[1], axes[2], why, h.min_ratio));
+      throw InputError(fmt::format("patch.samples[{}] = [{}, {}, {}]: {} (patch.min_ratio = {}, patch.cigar_ratio = {})",
+                                   i / 3, axes[0], axes[1], axes[2], why, h.min_ratio, h.cigar_ratio));
     const double norm = std::sqrt(axes[0] * axes[0] + axes[1] * axes[1] + axes[2] * axes[2]);
     spec.samples_m.push_back({axes[0] / norm, axes[1] / norm, axes[2] / norm});  // to rounding
     for (std::size_t j = 0; j + 1 < spec.samples_m.size(); ++j)

@@ -95,8 +95,8 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
                      "1/s, beta = {} s\n", m.name, m.rho_kg_m3, m.youngs_pa, m.poisson, m.shear_speed_m_s(),
                      m.damping.value_or(model::RayleighDamping{}).alpha_1_s, m.damping.value_or(model::RayleighDamping{}).beta_s);
   out += fmt::format("  settings:   {}, and on by the mesh's error margin; h = shear wavelength at f_max / {}; "
-                     "min a/c {}; clusters split by > {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", band_text(h),
-                     h.elements_per_wavelength, h.min_ratio, h.solve.cluster_gap, h.solve.tolerance,
+                     "patch: min a/c {}, cigar b/c {}; clusters split by > {}; tolerance {}, residuals <= {}; {} rank(s) per entry\n", band_text(h),
+                     h.elements_per_wavelength, h.min_ratio, h.cigar_ratio, h.solve.cluster_gap, h.solve.tolerance,
                      h.solve.residual_limit, h.ranks_per_task);
   const auto& tr = h.transfer;
   out += fmt::format("  transfer:   {}; air c = {} m/s, rho = {} kg/m^3; {} fit points per source (per angle), {} sources per wavelength, "
