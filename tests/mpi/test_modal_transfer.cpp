@@ -122,6 +122,38 @@ TEST(ModalTransferSlow, FlatEntryWithinTwoPercent) {
   }
 }
 
+// The default bank's flattest entry as the bank builds it (its own band, k = 10 for a thin plate):
+// every mode that pushes the air within 2 % boundary residual, and the far field of the first,
+// a middle and the last mode against Kirchhoff-Helmholtz (2 %). Slow: ~30 modes at ~10 core-s each.
+TEST(ModalTransferSlow, FlattestDefaultEntryWithinTwoPercent) {
+  io::Config config(jobs::modal_schema());
+  const auto defaults = jobs::make_modal_spec(config);
+  std::size_t flattest = 0;
+  for (std::size_t i = 0; i < defaults.samples_m.size(); ++i)
+    if (defaults.samples_m[i][0] / defaults.samples_m[i][2] <
+        defaults.samples_m[flattest][0] / defaults.samples_m[flattest][2])
+      flattest = i;
+  const auto entry = jobs::build_modal_entry(MPI_COMM_WORLD, defaults, flattest);
+  if (rank() != 0) return;
+  ASSERT_GT(entry.modes(), 0u);
+  const auto& settings = defaults.header.transfer;
+  const auto& x = entry.axes_m;
+  for (std::size_t mode = 0; mode < entry.modes(); ++mode) {
+    const double residual = entry.transfer.boundary_residual[mode], fraction = entry.transfer.normal_fraction[mode];
+    if (fraction > 0.3) {
+      EXPECT_LT(residual, 0.02) << "mode " << mode;
+    }
+    std::printf("%.4f:%.4f:%.4f mode %zu: %.1f Hz, k c %.1f, normal fraction %.2f, boundary residual %.2e\n", x[0], x[1],
+                x[2], mode, entry.frequencies_hz[mode], entry.transfer.wavenumber_rad_m[mode] * x[2], fraction, residual);
+  }
+  for (const std::size_t mode : {std::size_t{0}, entry.modes() / 2, entry.modes() - 1}) {
+    const kt::ModeTransfer t = jobs::mode_transfer(entry, mode, settings);
+    const double worst = far_field_check(entry, mode, t, kt::stored_multipole(entry.transfer, mode), settings);
+    EXPECT_LT(worst, 0.02) << "mode " << mode;
+    std::printf("%.4f:%.4f:%.4f mode %zu: far field vs Kirchhoff-Helmholtz %.2e\n", x[0], x[1], x[2], mode, worst);
+  }
+}
+
 TEST(ModalTransfer, ScalesAsGammaToTheMinusFiveHalves) {
   const auto spec = spec_for(1, 1.3, 1.8);
   const auto entry = jobs::build_modal_entry(MPI_COMM_WORLD, spec, 0);
