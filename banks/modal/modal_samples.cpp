@@ -178,29 +178,21 @@ kernels::modal::FeatureBatch feature_batch(MPI_Comm world, const ModalSpec& spec
         std::copy(r.begin(), r.end(), mine.begin() + static_cast<long>(i * static_cast<std::size_t>(n)));
       }
     });
-    // Each value comes from one rank, the others add zeros: the sum is exact.
+    // A cached point's features come from rank 0's cache, a solved one's from its rank; the
+    // others add zeros, so the sum is exact and every rank gets every point.
+    if (rank == 0)
+      for (std::size_t i = 0; i < points.size(); ++i)
+        if (known[i] != 0) {
+          const auto& f = cache.solved().at(points[i]);
+          std::copy(f.begin(), f.end(), mine.begin() + static_cast<long>(i * static_cast<std::size_t>(n)));
+        }
     const std::vector<double> all = mpi::all_reduce_sum(world, mine);
     std::vector<std::vector<double>> out;
     for (std::size_t i = 0; i < points.size(); ++i) {
-      std::vector<double> f(all.begin() + static_cast<long>(i * static_cast<std::size_t>(n)),
-                            all.begin() + static_cast<long>((i + 1) * static_cast<std::size_t>(n)));
-      if (rank == 0) {
-        if (known[i] != 0)
-          f = cache.solved().at(points[i]);
-        else
-          cache.append(points[i], f);
-      }
-      out.push_back(std::move(f));
+      out.emplace_back(all.begin() + static_cast<long>(i * static_cast<std::size_t>(n)),
+                       all.begin() + static_cast<long>((i + 1) * static_cast<std::size_t>(n)));
+      if (rank == 0 && known[i] == 0) cache.append(points[i], out.back());
     }
-    // The cached features reach the other ranks from rank 0 (the sampler runs on every rank alike).
-    std::vector<double> flat(points.size() * static_cast<std::size_t>(n), 0.0);
-    if (rank == 0)
-      for (std::size_t i = 0; i < points.size(); ++i)
-        std::copy(out[i].begin(), out[i].end(), flat.begin() + static_cast<long>(i * static_cast<std::size_t>(n)));
-    flat = mpi::all_reduce_sum(world, flat);
-    for (std::size_t i = 0; i < points.size(); ++i)
-      out[i].assign(flat.begin() + static_cast<long>(i * static_cast<std::size_t>(n)),
-                    flat.begin() + static_cast<long>((i + 1) * static_cast<std::size_t>(n)));
     spdlog::info("modal-samples: {} ellipsoids ({} solved, {} from the cache) in {:.1f} s", points.size(), todo.size(),
                  points.size() - todo.size(),
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
