@@ -2,7 +2,7 @@
 // settings, to measure what a setting costs and buys (docs/transfer.md "Cost"). Serial: no FEM,
 // the modes come from a modal bank (the synthesizer's serial HDF5 reader).
 //   clatter-transfer-settings BANK ENTRY MODE[,MODE...] [KEY=VALUE ...]
-// KEY: rim_spacing_per_depth, rim_inner_fraction, points_per_source, sources_per_wavelength,
+// KEY: rim_aspect, rim_spacing_per_depth, rim_inner_fraction, points_per_source, sources_per_wavelength,
 // data_spacing_factor (the surface's node spacing scaled, which caps the sources' and fit points'
 // spacing), where (1: the residual by zone from the face centre to the rim). Prints one line per
 // mode: seconds, sources, fit points, boundary residual, normal fraction.
@@ -33,7 +33,7 @@ void residual_by_zone(const std::array<double, 3>& axes_m, double omega, const k
   const kt::SurfacePoints points = kt::rim_grid(axes_m, std::vector<int>(160, 80));
   const double k = omega / settings.sound_speed_m_s, scale = settings.air_density_kg_m3 * omega * omega;
   const auto fields = kt::class_fields(k, t.solution->fit, t.solution->layout, points);
-  std::vector<double> err(edges.size() - 1, 0.0), norm(edges.size() - 1, 0.0);
+  std::vector<double> err(edges.size() - 1, 0.0), norm(edges.size() - 1, 0.0), largest_u(edges.size() - 1, 0.0);
   double total = 0;
   std::vector<std::complex<double>> p, dp;
   for (int s = 0; s < 8; ++s) {
@@ -45,14 +45,16 @@ void residual_by_zone(const std::array<double, 3>& axes_m, double omega, const k
       std::size_t z = 0;
       while (z + 2 < edges.size() && r >= edges[z + 1]) ++z;
       const double g = scale * values[i].dot(kt::mirror(points.normal[i], s)), w = points.weight_m2[i];
+      largest_u[z] = std::max(largest_u[z], values[i].norm());
       err[z] += w * std::norm(dp[i] - g);
       norm[z] += w * g * g;
       total += w * g * g;
     }
   }
   for (std::size_t z = 0; z + 1 < edges.size(); ++z)
-    std::printf("  rim share %.3f-%.3f: residual %.2e of the zone's data, %.2e of the whole; data share %.3f\n", edges[z],
-                edges[z + 1], std::sqrt(err[z] / std::max(norm[z], 1e-300)), std::sqrt(err[z] / total), std::sqrt(norm[z] / total));
+    std::printf("  rim share %.3f-%.3f: residual %.2e of the zone's data, %.2e of the whole; data share %.3f; largest |u| %.3g\n",
+                edges[z], edges[z + 1], std::sqrt(err[z] / std::max(norm[z], 1e-300)), std::sqrt(err[z] / total),
+                std::sqrt(norm[z] / total), largest_u[z]);
 }
 
 int run(int argc, char** argv) {
@@ -72,6 +74,7 @@ int run(int argc, char** argv) {
     else if (key == "rim_inner_fraction") settings.rim_inner_fraction = value;
     else if (key == "points_per_source") settings.points_per_source = value;
     else if (key == "sources_per_wavelength") settings.sources_per_wavelength = value;
+    else if (key == "rim_aspect") settings.rim_aspect = value;
     else if (key == "data_spacing_factor") data_factor = value;
     else if (key == "where") where = value != 0;
     else throw std::invalid_argument("unknown key " + key);

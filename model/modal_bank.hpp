@@ -116,6 +116,13 @@ struct ModalEntry {
   std::size_t modes() const { return frequencies_hz.size(); }
 };
 
+// The transfer's promise per mode (docs/transfer.md): a boundary residual within
+// kResidualPromised wherever the mode's normal fraction exceeds kNormalFractionPromised (below
+// it the data u.n is mostly the mesh's noise: a torsional mode). The bank warns per entry and
+// `info` prints the worst such residual.
+inline constexpr double kResidualPromised = 0.02;
+inline constexpr double kNormalFractionPromised = 0.3;
+
 // How each mode's acoustic transfer is computed (kernels/transfer/mode_transfer.hpp, which takes
 // this struct as is). The bank file holds `method` and the six settings a config may change
 // (/settings/transfer); the kernel's own constants below them keep their defaults when read back.

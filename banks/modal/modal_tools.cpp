@@ -115,7 +115,7 @@ std::string modal_bank_info(const std::string& path, std::optional<std::size_t> 
     const int order = e.modes() ? *std::max_element(t.order.begin(), t.order.end()) : 0;
     double boundary = 0;  // over the modes that push the air (a torsional mode's residual is its noise's)
     for (std::size_t k = 0; k < e.modes(); ++k)
-      if (t.normal_fraction[k] > 0.3) boundary = std::max(boundary, t.boundary_residual[k]);
+      if (t.normal_fraction[k] > model::kNormalFractionPromised) boundary = std::max(boundary, t.boundary_residual[k]);
     // Equi-frequency scaling: a piece of this shape and longest dimension L has f_0 = f_1 2c / L,
     // so it gets every mode to the top while k f_0 >= top, L <= 2 c k f_1 / top.
     const double f1 = e.modes() ? e.frequencies_hz.front() : 0.0, k = f1 > 0 ? e.band.f_max_hz / f1 : 0.0;

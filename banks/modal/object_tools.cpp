@@ -48,7 +48,7 @@ std::string object_bank_info(const std::string& path, std::optional<std::size_t>
     const int order = e.modes() ? *std::max_element(t.order.begin(), t.order.end()) : 0;
     double boundary = 0;
     for (std::size_t k = 0; k < e.modes(); ++k)
-      if (t.normal_fraction[k] > 0.3) boundary = std::max(boundary, t.boundary_residual[k]);
+      if (t.normal_fraction[k] > model::kNormalFractionPromised) boundary = std::max(boundary, t.boundary_residual[k]);
     out += fmt::format("  {:<5}  {:<27}  {:<8}  {:<5}  {:<9.2f}  {:<9.2f}  {:<7}  {:<8.3g}  {:<12.3g}  {:.1e}  {:<3} {:.1e}  "
                        "{:<8.1f}  {}\n",
                        i, oe.key, oe.material.name, e.modes(), e.modes() ? e.frequencies_hz.front() : 0.0,
