@@ -9,7 +9,9 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -89,9 +91,16 @@ int run(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto t = kt::solve_mode_transfer(entry.axes_m, 2 * std::numbers::pi * entry.frequencies_hz[mode], spacing, u, settings);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("mode %zu %.1f Hz: %.2f s, %d sources, %d fit points, residual %.2e, normal fraction %.2f, order %d\n", mode,
-                entry.frequencies_hz[mode], s, t.sources, t.fit_points, t.boundary_residual, t.normal_fraction,
-                t.expansion.order);
+    // FNV-1a of the expansion's bytes: whether two builds give the same bits.
+    std::uint64_t digest = 1469598103934665603ull;
+    for (const auto& c : t.expansion.coefficients) {
+      unsigned char bytes[sizeof(c)];
+      std::memcpy(bytes, &c, sizeof(c));
+      for (unsigned char b : bytes) digest = (digest ^ b) * 1099511628211ull;
+    }
+    std::printf("mode %zu %.1f Hz: %.2f s, %d sources, %d fit points, residual %.2e, normal fraction %.2f, order %d, "
+                "coefficients' digest %016llx\n", mode, entry.frequencies_hz[mode], s, t.sources, t.fit_points,
+                t.boundary_residual, t.normal_fraction, t.expansion.order, static_cast<unsigned long long>(digest));
     if (where) residual_by_zone(entry.axes_m, 2 * std::numbers::pi * entry.frequencies_hz[mode], settings, u, t);
   }
   return 0;

@@ -162,8 +162,8 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     const auto& a = spec.samples_m[i];
     e.report += p.failure.empty()
                     ? fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  f_1 {:8.1f} Hz  k {:5.2f}  h {:.4f} m  {:7} dofs  ~{:5} modes  "
-                                  "~{}\n", tasks[i].name, a[0], a[1], a[2], p.f1_hz, p.k, p.h_m, p.dofs, p.modes,
-                                  clock_text(p.task_s))
+                                  "~{}  (coarse {} dofs, transfer work {:.3g} per mode)\n", tasks[i].name, a[0], a[1], a[2],
+                                  p.f1_hz, p.k, p.h_m, p.dofs, p.modes, clock_text(p.task_s), p.coarse_dofs, p.transfer_work)
                     : fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  will fail: {}\n", tasks[i].name, a[0], a[1], a[2],
                                   p.failure);
   }

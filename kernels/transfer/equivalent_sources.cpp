@@ -16,36 +16,66 @@ extern "C" void zgels_(const char* trans, const int* m, const int* n, const int*
 namespace clatter::kernels::transfer {
 namespace {
 
-// e^{-ikr} / (4 pi r) and its gradient in x: -(1 + ikr) e^{-ikr} / (4 pi r^3) (x - y).
-struct Green {
-  std::complex<double> value, normal_derivative;
+// G = e^{-ikr} / (4 pi r) and its gradient in x: -(1 + ikr) e^{-ikr} / (4 pi r^3) (x - y).
+// The 8 mirror images of a source as coordinate arrays, so that the loops over them vectorize.
+struct Images {
+  double x[8], y[8], z[8];
 };
-
-// The 8 images of source j seen from point (x, n): G and dG/dn of G(x, mirror_t(y_j)). Written
-// as plain arrays over the 8 images, in real arithmetic: the fill and the check evaluate this
-// ~10^8 times per flat mode, and it, not the QR, is most of a mode's time.
-std::array<Green, 8> image_greens(double k, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
-                                  const std::array<Eigen::Vector3d, 8>& images) {
-  double r[8], dn[8], c[8], sn[8];
-  for (std::size_t t = 0; t < 8; ++t) {
-    const Eigen::Vector3d d = x - images[t];
-    r[t] = d.norm();
-    dn[t] = d.dot(n);
+Images images_of(const Eigen::Vector3d& y) {
+  Images m;
+  for (int t = 0; t < 8; ++t) {
+    m.x[t] = (t & 1) ? -y.x() : y.x();
+    m.y[t] = (t & 2) ? -y.y() : y.y();
+    m.z[t] = (t & 4) ? -y.z() : y.z();
   }
-  for (int t = 0; t < 8; ++t) sin_cos(k * r[t], sn[t], c[t]);
-  std::array<Green, 8> out;
-  for (std::size_t t = 0; t < 8; ++t) {
-    const double inv_r = 1 / r[t], scale = inv_r / (4 * std::numbers::pi), kr = k * r[t];
-    const double e_re = c[t] * scale, e_im = -sn[t] * scale, f = -dn[t] * inv_r * inv_r;
-    out[t] = {{e_re, e_im}, {f * (e_re - kr * e_im), f * (e_im + kr * e_re)}};  // -(1 + ikr) e dn / r^2
-  }
-  return out;
+  return m;
 }
 
-std::array<Eigen::Vector3d, 8> images_of(const Eigen::Vector3d& y) {
-  std::array<Eigen::Vector3d, 8> images;
-  for (int t = 0; t < 8; ++t) images[static_cast<std::size_t>(t)] = mirror(y, t);
-  return images;
+// The 8 images of a source seen from point (x, n): G and dG/dn of G(x, mirror_t(y)), real and
+// imaginary parts apart. The fill and the check evaluate this ~10^8 times per flat mode, and it,
+// not the QR, is most of a mode's time: in real arithmetic, without branches (sin_cos_reduced),
+// and cloned for AVX2 (chosen at load time where the CPU has it; 4 images per instruction). No FMA
+// in either clone, and IEEE square roots and divisions in both: the same bits on any x86-64.
+struct ImageGreens {
+  double value_re[8], value_im[8], dn_re[8], dn_im[8];
+};
+[[gnu::target_clones("avx2", "default")]] void image_greens(double k, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
+                                                            const Images& images, ImageGreens& out) {
+  double r[8], dn[8], kr[8], c[8], sn[8];
+  for (int t = 0; t < 8; ++t) {
+    const double dx = x.x() - images.x[t], dy = x.y() - images.y[t], dz = x.z() - images.z[t];
+    r[t] = dx * dx + dy * dy + dz * dz;
+    dn[t] = dx * n.x() + dy * n.y() + dz * n.z();
+  }
+  for (int t = 0; t < 8; ++t) r[t] = std::sqrt(r[t]);
+  double largest = 0;
+  for (int t = 0; t < 8; ++t) {
+    kr[t] = k * r[t];
+    largest = std::max(largest, kr[t]);
+  }
+  if (largest <= kSinCosReduced)
+    for (int t = 0; t < 8; ++t) sin_cos_reduced(kr[t], sn[t], c[t]);
+  else
+    for (int t = 0; t < 8; ++t) sin_cos(kr[t], sn[t], c[t]);
+  for (int t = 0; t < 8; ++t) {
+    const double inv_r = 1 / r[t], scale = inv_r / (4 * std::numbers::pi);
+    const double e_re = c[t] * scale, e_im = -sn[t] * scale, f = -dn[t] * inv_r * inv_r;
+    out.value_re[t] = e_re;
+    out.value_im[t] = e_im;
+    out.dn_re[t] = f * (e_re - kr[t] * e_im);  // -(1 + ikr) e dn / r^2
+    out.dn_im[t] = f * (e_im + kr[t] * e_re);
+  }
+}
+
+// The class sigma's part of a field over the 8 images: sum of parity_sign(t, sigma) times image t.
+std::complex<double> class_sum(const double (&re)[8], const double (&im)[8], int sigma) {
+  double sum_re = 0, sum_im = 0;
+  for (int t = 0; t < 8; ++t) {
+    const double sign = parity_sign(t, sigma);
+    sum_re += sign * re[t];
+    sum_im += sign * im[t];
+  }
+  return {sum_re, sum_im};
 }
 
 // A row's panels: the stretches that one sample of its coarsest level stands for (level l has
@@ -122,14 +152,11 @@ std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit
   // Adds the column of a monopole at y, times weight(class), to unknowns' columns via `add`.
   const auto accumulate = [&](const Eigen::Vector3d& y, const auto& add) {
     const auto images = images_of(y);
+    ImageGreens g;
     for (Eigen::Index i = 0; i < m; ++i) {
       const auto ui = static_cast<std::size_t>(i);
-      const auto g = image_greens(k, fit.position_m[ui], fit.normal[ui], images);
-      for (std::size_t c = 0; c < sigmas.size(); ++c) {
-        std::complex<double> sum = 0;
-        for (int t = 0; t < 8; ++t) sum += parity_sign(t, sigmas[c]) * g[static_cast<std::size_t>(t)].normal_derivative;
-        sums[c] = root_w[ui] * sum;
-      }
+      image_greens(k, fit.position_m[ui], fit.normal[ui], images, g);
+      for (std::size_t c = 0; c < sigmas.size(); ++c) sums[c] = root_w[ui] * class_sum(g.dn_re, g.dn_im, sigmas[c]);
       add(i);
     }
   };
@@ -143,12 +170,11 @@ std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit
   for (const SpreadRow& row : layout.spread)
     for_each_sample(row, fit, fill_rule(k), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
       const auto images = images_of(p.position_m);
+      ImageGreens g;
       for (const std::size_t ui : near) {
-        const auto g = image_greens(k, fit.position_m[ui], fit.normal[ui], images);
+        image_greens(k, fit.position_m[ui], fit.normal[ui], images, g);
         for (std::size_t c = 0; c < sigmas.size(); ++c) {
-          std::complex<double> sum = 0;
-          for (int t = 0; t < 8; ++t) sum += parity_sign(t, sigmas[c]) * g[static_cast<std::size_t>(t)].normal_derivative;
-          sum *= root_w[ui];
+          const std::complex<double> sum = root_w[ui] * class_sum(g.dn_re, g.dn_im, sigmas[c]);
           for (std::size_t tap = 0; tap < p.taps.size(); ++tap)
             a[c](static_cast<Eigen::Index>(ui), p.taps[tap].unknown) += p.weight_for(tap, sigmas[c]) * sum;
         }
@@ -243,15 +269,12 @@ void add_fields(double k, const std::vector<Eigen::Vector3d>& positions,
                 const std::vector<std::size_t>& which, std::vector<ClassField>& out) {
   for (std::size_t j = 0; j < positions.size(); ++j) {
     const auto images = images_of(positions[j]);
+    ImageGreens g;
     for (const std::size_t i : which) {
-      const auto g = image_greens(k, points.position_m[i], points.normal[i], images);
+      image_greens(k, points.position_m[i], points.normal[i], images, g);
       for (std::size_t c = 0; c < out.size(); ++c) {
-        std::complex<double> p = 0, dp = 0;
-        for (int t = 0; t < 8; ++t) {
-          const double sign = parity_sign(t, out[c].sigma);
-          p += sign * g[static_cast<std::size_t>(t)].value;
-          dp += sign * g[static_cast<std::size_t>(t)].normal_derivative;
-        }
+        const std::complex<double> p = class_sum(g.value_re, g.value_im, out[c].sigma);
+        const std::complex<double> dp = class_sum(g.dn_re, g.dn_im, out[c].sigma);
         out[c].pressure[i] += strengths[c][j] * p;
         out[c].normal_derivative[i] += strengths[c][j] * dp;
       }

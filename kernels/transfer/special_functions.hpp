@@ -35,12 +35,10 @@ std::vector<std::complex<double>> spherical_hankel2_derivative(const std::vector
 // pi / 2 in three parts (fdlibm's pio2_1..3: n pio2_1 is exact for |n| < 2^20), then Cephes'
 // minimax polynomials on [-pi / 4, pi / 4]. Within 2.3e-16 of libm for |x| <= 1e5
 // (tests/unit/test_special_functions.cpp); libm itself beyond.
-inline void sin_cos(double x, double& sin_x, double& cos_x) {
-  if (!(std::abs(x) <= 1e5)) {
-    sin_x = std::sin(x);
-    cos_x = std::cos(x);
-    return;
-  }
+// sin_cos for |x| <= kSinCosReduced (the caller's check), without branches: the quadrant picks
+// by selects, so that a loop of them vectorizes (equivalent_sources.cpp's 8 images).
+inline constexpr double kSinCosReduced = 1e5;
+inline void sin_cos_reduced(double x, double& sin_x, double& cos_x) {
   constexpr double kTwoOverPi = 0.636619772367581343076;
   constexpr double kPio2_1 = 1.57079632673412561417e+00, kPio2_2 = 6.07710050630396597660e-11,
                    kPio2_3 = 2.02226624871116645580e-21;
@@ -50,12 +48,19 @@ inline void sin_cos(double x, double& sin_x, double& cos_x) {
                    z * (2.75573136213857245213e-6 + z * (-2.50507477628578072866e-8 + z * 1.58962301576546568060e-10)))));
   const double c = 1.0 - 0.5 * z + z * z * (4.16666666666665929218e-2 + z * (-1.38888888888730564116e-3 + z * (2.48015872888517045348e-5 +
                    z * (-2.75573141792967388112e-7 + z * (2.08757008419747316778e-9 + z * -1.13585365213876817300e-11)))));
-  switch (static_cast<long>(n) & 3) {
-    case 0: sin_x = s; cos_x = c; break;
-    case 1: sin_x = c; cos_x = -s; break;
-    case 2: sin_x = -s; cos_x = -c; break;
-    default: sin_x = -c; cos_x = s; break;
+  // Quadrant q = n mod 4: sin is s, c, -s, -c and cos is c, -s, -c, s.
+  const int q = static_cast<int>(n) & 3;
+  const double s_q = (q & 1) ? c : s, c_q = (q & 1) ? s : c;
+  sin_x = (q & 2) ? -s_q : s_q;
+  cos_x = ((q + 1) & 2) ? -c_q : c_q;
+}
+inline void sin_cos(double x, double& sin_x, double& cos_x) {
+  if (!(std::abs(x) <= kSinCosReduced)) {
+    sin_x = std::sin(x);
+    cos_x = std::cos(x);
+    return;
   }
+  sin_cos_reduced(x, sin_x, cos_x);
 }
 
 // Index of (n, m), |m| <= n, in the flat arrays below: n^2 + n + m.
