@@ -2,7 +2,7 @@
 // settings, to measure what a setting costs and buys (docs/transfer.md "Cost"). Serial: no FEM,
 // the modes come from a modal bank (the synthesizer's serial HDF5 reader).
 //   clatter-transfer-settings BANK ENTRY MODE[,MODE...] [KEY=VALUE ...]
-// KEY: rim_aspect, rim_spacing_per_depth, rim_inner_fraction, points_per_source, sources_per_wavelength,
+// KEY: rim_aspect, rim_thin_ratio, rim_spacing_per_depth, rim_inner_fraction, points_per_source, sources_per_wavelength,
 // data_spacing_factor (the surface's node spacing scaled, which caps the sources' and fit points'
 // spacing), where (1: the residual by zone from the face centre to the rim). Prints one line per
 // mode: seconds, sources, fit points, boundary residual, normal fraction.
@@ -77,6 +77,7 @@ int run(int argc, char** argv) {
     else if (key == "points_per_source") settings.points_per_source = value;
     else if (key == "sources_per_wavelength") settings.sources_per_wavelength = value;
     else if (key == "rim_aspect") settings.rim_aspect = value;
+    else if (key == "rim_thin_ratio") settings.rim_thin_ratio = value;
     else if (key == "data_spacing_factor") data_factor = value;
     else if (key == "where") where = value != 0;
     else throw std::invalid_argument("unknown key " + key);

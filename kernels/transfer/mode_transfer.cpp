@@ -327,7 +327,9 @@ constexpr double kRimDataScale = 2;
 
 // The two layouts as solve_mode_transfer and layout_size take them: which one a body gets, and
 // each at its data scale.
-bool rim_layout(const std::array<double, 3>& axes_m, const TransferSettings& s) { return axes_m[1] >= s.rim_aspect * axes_m[0]; }
+bool rim_layout(const std::array<double, 3>& axes_m, const TransferSettings& s) {
+  return axes_m[1] >= s.rim_aspect * axes_m[0] || axes_m[0] <= s.rim_thin_ratio * axes_m[2];
+}
 Grids rim_grids(const std::array<double, 3>& axes_m, double k, double data_spacing_m, const TransferSettings& s) {
   return make_rim_grids(axes_m, k, kRimDataScale * data_spacing_m, s.rim_inner_fraction, s.rim_spacing_per_depth, s);
 }
