@@ -150,7 +150,7 @@ struct TransferSettings {
   // ...and bodies thin against their length (a <= rim_thin_ratio c: a needle, a splinter), whose
   // tips the layer resolves as badly as a rim: measured on the default bank's 0.08-0.14 : 0.11-0.23
   // : 0.97-0.99 entries, residuals 5-20x lower and the fits 1-3.6x faster; at a / c = 0.18 the rim
-  // layout is 5x slower (docs/transfer.md "Flat bodies").
+  // layout is 5x slower (docs/transfer.md "Needles and splinters").
   double rim_thin_ratio = 0.15;
   double rim_inner_fraction = 0.3;
   double rim_spacing_per_depth = 0.7;

@@ -24,7 +24,7 @@ namespace {
 // the count check) and one per mode (shifts and solves with the factors). Fitted, with the
 // transfer's constants below, to the 77 entries of the default bank (2026-12-05, 2 358 to 125 199
 // dofs, 11 to 65 modes; docs/benchmarks.md "The default bank of 77 entries") anchored on its
-// smallest entry as `plan` is: 63 of 77 within 30 %, the whole bank within 6 %. (The former
+// smallest entry as `plan` is: 63 of 77 within 30 %, the whole bank within 4 %. (The former
 // 1.34 and 18 came from 5 entries and over-predicted this bank 1.6x.) The pre-solve (one
 // factorization and a few Krylov restarts on the coarse mesh) grows like its dofs; mesh and
 // assembly like the entry's.

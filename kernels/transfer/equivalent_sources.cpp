@@ -16,7 +16,6 @@ extern "C" void zgels_(const char* trans, const int* m, const int* n, const int*
 namespace clatter::kernels::transfer {
 namespace {
 
-// G = e^{-ikr} / (4 pi r) and its gradient in x: -(1 + ikr) e^{-ikr} / (4 pi r^3) (x - y).
 // The 8 mirror images of a source as coordinate arrays, so that the loops over them vectorize.
 struct Images {
   double x[8], y[8], z[8];
@@ -24,13 +23,15 @@ struct Images {
 Images images_of(const Eigen::Vector3d& y) {
   Images m;
   for (int t = 0; t < 8; ++t) {
-    m.x[t] = (t & 1) ? -y.x() : y.x();
-    m.y[t] = (t & 2) ? -y.y() : y.y();
-    m.z[t] = (t & 4) ? -y.z() : y.z();
+    const Eigen::Vector3d image = mirror(y, t);
+    m.x[t] = image.x();
+    m.y[t] = image.y();
+    m.z[t] = image.z();
   }
   return m;
 }
 
+// G = e^{-ikr} / (4 pi r) and its gradient in x, -(1 + ikr) e^{-ikr} / (4 pi r^3) (x - y).
 // The 8 images of a source seen from point (x, n): G and dG/dn of G(x, mirror_t(y)), real and
 // imaginary parts apart. The fill and the check evaluate this ~10^8 times per flat mode, and it,
 // not the QR, is most of a mode's time: in real arithmetic, without branches (sin_cos_reduced),
@@ -42,14 +43,11 @@ struct ImageGreens {
 [[gnu::target_clones("avx2", "default")]] void image_greens(double k, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
                                                             const Images& images, ImageGreens& out) {
   double r[8], dn[8], kr[8], c[8], sn[8];
-  for (int t = 0; t < 8; ++t) {
-    const double dx = x.x() - images.x[t], dy = x.y() - images.y[t], dz = x.z() - images.z[t];
-    r[t] = dx * dx + dy * dy + dz * dz;
-    dn[t] = dx * n.x() + dy * n.y() + dz * n.z();
-  }
-  for (int t = 0; t < 8; ++t) r[t] = std::sqrt(r[t]);
   double largest = 0;
   for (int t = 0; t < 8; ++t) {
+    const double dx = x.x() - images.x[t], dy = x.y() - images.y[t], dz = x.z() - images.z[t];
+    r[t] = std::sqrt(dx * dx + dy * dy + dz * dz);
+    dn[t] = dx * n.x() + dy * n.y() + dz * n.z();
     kr[t] = k * r[t];
     largest = std::max(largest, kr[t]);
   }

@@ -168,29 +168,26 @@ SurfacePoint SurfaceLocator::locate(const Eigen::Vector3d& x) const {
                              "barycentric " + std::to_string(candidates.empty() ? -1e300 : candidates.front().min_l) + ")");
   // The face the ray crosses holds the nearest point, except where the ray grazes the surface
   // (a thin body near its rim): there the nearest point may lie on a neighbour, whose flat
-  // coordinates are then nearly inside too.
+  // coordinates are then nearly inside too. The face whose refined coordinates are most inside wins.
   constexpr double kInside = 1e-9, kNeighbour = -0.5;
-  int best = -1;
-  Eigen::Vector3d best_l;
-  double best_min = -1e300;
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (i == 1) {
-      if (best_min >= -kInside) break;
-      std::sort(candidates.begin() + 1, candidates.end(), order);
-    }
-    const Candidate& c = candidates[i];
-    if (best >= 0 && (best_min >= -kInside || c.min_l < kNeighbour)) break;
+  const auto refined = [&](const Candidate& c) {
     const Eigen::Vector3d start = c.l.cwiseMax(0.0) / c.l.cwiseMax(0.0).sum();
-    const Eigen::Vector3d l = refine_on_curved_face(m.nodes_m, m.faces[static_cast<std::size_t>(c.face)], x, start);
-    if (l.allFinite() && l.minCoeff() > best_min) {
-      best_min = l.minCoeff();
-      best = c.face;
-      best_l = l;
-    }
-  }
-  if (best < 0) {  // no refinement converged: the flat coordinates of the ray's face
-    best = candidates.front().face;
+    return refine_on_curved_face(m.nodes_m, m.faces[static_cast<std::size_t>(c.face)], x, start);
+  };
+  int best = candidates.front().face;
+  Eigen::Vector3d best_l = refined(candidates.front());
+  if (!best_l.allFinite())  // no refinement converged: the flat coordinates of the ray's face
     best_l = candidates.front().l.cwiseMax(0.0) / candidates.front().l.cwiseMax(0.0).sum();
+  if (best_l.minCoeff() < -kInside) {
+    std::sort(candidates.begin() + 1, candidates.end(), order);
+    for (std::size_t i = 1; i < candidates.size() && candidates[i].min_l >= kNeighbour; ++i) {
+      const Eigen::Vector3d l = refined(candidates[i]);
+      if (l.allFinite() && l.minCoeff() > best_l.minCoeff()) {
+        best = candidates[i].face;
+        best_l = l;
+        if (l.minCoeff() >= -kInside) break;
+      }
+    }
   }
   return {m.faces[static_cast<std::size_t>(best)], shape_functions(best_l)};
 }
