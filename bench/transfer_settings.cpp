@@ -2,7 +2,7 @@
 // settings, to measure what a setting costs and buys (docs/transfer.md "Cost"). Serial: no FEM,
 // the modes come from a modal bank (the synthesizer's serial HDF5 reader).
 //   clatter-transfer-settings BANK ENTRY MODE[,MODE...] [KEY=VALUE ...]
-// KEY: rim_aspect, rim_thin_ratio, rim_spacing_per_depth, rim_inner_fraction, points_per_source, sources_per_wavelength,
+// KEY: rim_aspect, rim_thin_ratio, residual_target, rim_spacing_per_depth, rim_inner_fraction, points_per_source, sources_per_wavelength,
 // data_spacing_factor (the surface's node spacing scaled, which caps the sources' and fit points'
 // spacing), where (1: the residual by zone from the face centre to the rim). Prints one line per
 // mode: seconds, sources, fit points, boundary residual, normal fraction.
@@ -34,7 +34,7 @@ void residual_by_zone(const std::array<double, 3>& axes_m, double omega, const k
   const std::vector<double> edges{0, 0.5, 0.8, 0.9, 0.95, 0.99, 0.999, 1.0001};
   const kt::SurfacePoints points = kt::rim_grid(axes_m, std::vector<int>(160, 80));
   const double k = omega / settings.sound_speed_m_s, scale = settings.air_density_kg_m3 * omega * omega;
-  const auto fields = kt::class_fields(k, t.solution->fit, t.solution->layout, points);
+  const auto fields = kt::class_fields(k, t.solution->fit, t.solution->layout, points, kt::FieldParts::kNormalDerivative);
   std::vector<double> err(edges.size() - 1, 0.0), norm(edges.size() - 1, 0.0), largest_u(edges.size() - 1, 0.0);
   double total = 0;
   std::vector<std::complex<double>> p, dp;
@@ -78,6 +78,7 @@ int run(int argc, char** argv) {
     else if (key == "sources_per_wavelength") settings.sources_per_wavelength = value;
     else if (key == "rim_aspect") settings.rim_aspect = value;
     else if (key == "rim_thin_ratio") settings.rim_thin_ratio = value;
+    else if (key == "residual_target") settings.residual_target = value;
     else if (key == "data_spacing_factor") data_factor = value;
     else if (key == "where") where = value != 0;
     else throw std::invalid_argument("unknown key " + key);

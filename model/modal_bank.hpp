@@ -133,7 +133,7 @@ struct TransferSettings {
   double air_density_kg_m3 = 1.2041;
   double points_per_source = 1.5;        // fit points per angle / sources per angle (and >= the data's)
   double sources_per_wavelength = 3;     // source spacing <= lambda / this (and <= the layer depth)
-  double residual_target = 1e-2;         // residual x normal_fraction above it tries the next depth
+  double residual_target = 1e-2;         // residual x normal_fraction above it tries the layer's next depth
   double tail_tolerance = 1e-3;          // far-field L2 share the truncation may drop
   // The kernel's constants, not stored in the bank.
   std::vector<double> source_depths{0.65, 0.5, 0.35};  // layer depth / a, tried in this order
@@ -145,7 +145,7 @@ struct TransferSettings {
   // Flat bodies (b >= rim_aspect a): the rim-graded layout instead (docs/transfer.md "Flat
   // bodies"): spread sources on the confocal ellipsoid of thin semi-axis rim_inner_fraction a,
   // neighbours within rim_spacing_per_depth of their depth; a second attempt 1.2x denser in the
-  // air wavelength where the first misses residual_target.
+  // air wavelength where the first misses kResidualPromised (not residual_target: mode_transfer.cpp).
   double rim_aspect = 2;
   // ...and bodies thin against their length (a <= rim_thin_ratio c: a needle, a splinter), whose
   // tips the layer resolves as badly as a rim: measured on the default bank's 0.08-0.14 : 0.11-0.23

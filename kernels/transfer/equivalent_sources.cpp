@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <span>
 #include <string>
 #include <numbers>
 
@@ -165,18 +166,26 @@ std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit
       });
     return a;
   }
+  // A sample's column over the points that see it, then added to each tap's column: down the
+  // columns, where adding a point's taps across them missed the cache on every add (the same
+  // sums in the same order: an entry's terms still come sample by sample, tap by tap).
+  std::vector<std::vector<std::complex<double>>> column(sigmas.size());
   for (const SpreadRow& row : layout.spread)
     for_each_sample(row, fit, fill_rule(k), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
       const auto images = images_of(p.position_m);
       ImageGreens g;
-      for (const std::size_t ui : near) {
+      for (auto& col : column) col.resize(near.size());
+      for (std::size_t q = 0; q < near.size(); ++q) {
+        const std::size_t ui = near[q];
         image_greens(k, fit.position_m[ui], fit.normal[ui], images, g);
-        for (std::size_t c = 0; c < sigmas.size(); ++c) {
-          const std::complex<double> sum = root_w[ui] * class_sum(g.dn_re, g.dn_im, sigmas[c]);
-          for (std::size_t tap = 0; tap < p.taps.size(); ++tap)
-            a[c](static_cast<Eigen::Index>(ui), p.taps[tap].unknown) += p.weight_for(tap, sigmas[c]) * sum;
-        }
+        for (std::size_t c = 0; c < sigmas.size(); ++c) column[c][q] = root_w[ui] * class_sum(g.dn_re, g.dn_im, sigmas[c]);
       }
+      for (std::size_t c = 0; c < sigmas.size(); ++c)
+        for (std::size_t tap = 0; tap < p.taps.size(); ++tap) {
+          const double w = p.weight_for(tap, sigmas[c]);
+          std::complex<double>* target = a[c].col(p.taps[tap].unknown).data();
+          for (std::size_t q = 0; q < near.size(); ++q) target[near[q]] += w * column[c][q];
+        }
     });
   return a;
 }
@@ -262,19 +271,18 @@ std::vector<std::complex<double>> sample_strengths(const std::vector<SpreadPoint
 }
 
 // Adds to `out` the field of monopoles at `positions` (per class strengths) at the points `which`.
-void add_fields(double k, const std::vector<Eigen::Vector3d>& positions,
+void add_fields(double k, std::span<const Eigen::Vector3d> positions,
                 const std::vector<std::vector<std::complex<double>>>& strengths, const SurfacePoints& points,
-                const std::vector<std::size_t>& which, std::vector<ClassField>& out) {
+                const std::vector<std::size_t>& which, FieldParts parts, std::vector<ClassField>& out) {
+  const bool pressure = parts == FieldParts::kPressureAndNormalDerivative;
   for (std::size_t j = 0; j < positions.size(); ++j) {
     const auto images = images_of(positions[j]);
     ImageGreens g;
     for (const std::size_t i : which) {
       image_greens(k, points.position_m[i], points.normal[i], images, g);
       for (std::size_t c = 0; c < out.size(); ++c) {
-        const std::complex<double> p = class_sum(g.value_re, g.value_im, out[c].sigma);
-        const std::complex<double> dp = class_sum(g.dn_re, g.dn_im, out[c].sigma);
-        out[c].pressure[i] += strengths[c][j] * p;
-        out[c].normal_derivative[i] += strengths[c][j] * dp;
+        if (pressure) out[c].pressure[i] += strengths[c][j] * class_sum(g.value_re, g.value_im, out[c].sigma);
+        out[c].normal_derivative[i] += strengths[c][j] * class_sum(g.dn_re, g.dn_im, out[c].sigma);
       }
     }
   }
@@ -302,7 +310,7 @@ ClassMonopoles class_monopoles(const SourceFit& fit, const SourceLayout& layout)
 }
 
 std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const SourceLayout& layout,
-                                     const SurfacePoints& points) {
+                                     const SurfacePoints& points, FieldParts parts) {
   const std::size_t m = points.size();
   std::vector<ClassField> out;
   for (const auto& pf : fit.classes)
@@ -312,7 +320,7 @@ std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const
     for (std::size_t i = 0; i < m; ++i) all[i] = i;
     std::vector<std::vector<std::complex<double>>> strengths;
     for (const auto& pf : fit.classes) strengths.emplace_back(pf.strengths.data(), pf.strengths.data() + pf.strengths.size());
-    add_fields(k_rad_m, layout.sources.position_m, strengths, points, all, out);
+    add_fields(k_rad_m, layout.sources.position_m, strengths, points, all, parts, out);
     return out;
   }
   // The field of the finest samples, each panel taken as coarsely as field_rule allows (much
@@ -322,7 +330,7 @@ std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const
   for (const SpreadRow& row : layout.spread)
     for_each_sample(row, points, field_rule(k_rad_m), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
       for (std::size_t c = 0; c < fit.classes.size(); ++c) strengths[c][0] = sample_strength(p, fit.classes[c]);
-      add_fields(k_rad_m, {p.position_m}, strengths, points, near, out);
+      add_fields(k_rad_m, std::span(&p.position_m, 1), strengths, points, near, parts, out);
     });
   return out;
 }

@@ -76,22 +76,31 @@ void add_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::co
 
 void add_mirrored_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::complex<double> strength,
                            int sigma, std::vector<std::complex<double>>& coefficients) {
+  add_mirrored_monopole(k_rad_m, order, y_m, std::span(&strength, 1), std::span(&sigma, 1), coefficients);
+}
+
+void add_mirrored_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m,
+                           std::span<const std::complex<double>> strengths, std::span<const int> sigmas,
+                           std::vector<std::complex<double>>& coefficients) {
   const double r = y_m.norm();
   const auto j = spherical_bessel_j(order, k_rad_m * r);
   std::vector<std::complex<double>> y(static_cast<std::size_t>(harmonic_count(order)));
   spherical_harmonics(order, r > 0 ? y_m.z() / r : 1.0, std::atan2(y_m.y(), y_m.x()), y.data());
-  const double sx = (sigma & 1) ? -1 : 1, sy = (sigma & 2) ? -1 : 1, sz = (sigma & 4) ? -1 : 1;
-  const std::complex<double> factor = std::complex<double>(0, -k_rad_m) * strength;
-  for (int n = 0; n <= order; ++n) {
-    const std::complex<double> fn = factor * j[static_cast<std::size_t>(n)];
-    for (int m = -n; m <= n; ++m) {
-      const double pm = (m % 2) ? -1.0 : 1.0, pz = ((n + m) % 2) ? -1.0 : 1.0;
-      const double z_part = 1 + sz * pz;
-      if (z_part == 0) continue;
-      const auto i = static_cast<std::size_t>(harmonic_index(n, m));
-      // sum_s sign(s) conj Y(mirror_s y-hat) = (1 + sz (-1)^(n+m)) [conj Y (1 + sx sy (-1)^m) + Y (sx (-1)^m + sy)].
-      const std::complex<double> images = std::conj(y[i]) * (1 + sx * sy * pm) + y[i] * (sx * pm + sy);
-      coefficients[i] += fn * z_part * images;
+  for (std::size_t c = 0; c < sigmas.size(); ++c) {
+    const int sigma = sigmas[c];
+    const double sx = (sigma & 1) ? -1 : 1, sy = (sigma & 2) ? -1 : 1, sz = (sigma & 4) ? -1 : 1;
+    const std::complex<double> factor = std::complex<double>(0, -k_rad_m) * strengths[c];
+    for (int n = 0; n <= order; ++n) {
+      const std::complex<double> fn = factor * j[static_cast<std::size_t>(n)];
+      for (int m = -n; m <= n; ++m) {
+        const double pm = (m % 2) ? -1.0 : 1.0, pz = ((n + m) % 2) ? -1.0 : 1.0;
+        const double z_part = 1 + sz * pz;
+        if (z_part == 0) continue;
+        const auto i = static_cast<std::size_t>(harmonic_index(n, m));
+        // sum_s sign(s) conj Y(mirror_s y-hat) = (1 + sz (-1)^(n+m)) [conj Y (1 + sx sy (-1)^m) + Y (sx (-1)^m + sy)].
+        const std::complex<double> images = std::conj(y[i]) * (1 + sx * sy * pm) + y[i] * (sx * pm + sy);
+        coefficients[i] += fn * z_part * images;
+      }
     }
   }
 }

@@ -36,6 +36,11 @@ void add_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::co
 // maps conj Y_n^m to (-1)^m Y_n^m, flipping y to Y_n^m, flipping z multiplies by (-1)^(n+m).
 void add_mirrored_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::complex<double> strength,
                            int sigma, std::vector<std::complex<double>>& coefficients);
+// The same for one position in several parity classes (strengths[c] in class sigmas[c]): the
+// Bessel functions and harmonics, most of the cost, once.
+void add_mirrored_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m,
+                           std::span<const std::complex<double>> strengths, std::span<const int> sigmas,
+                           std::vector<std::complex<double>>& coefficients);
 
 // The order at which the expansion of sources within radius rho [m] is cut before truncation:
 // past k rho the terms fall off superexponentially (the k rho + 3 (k rho)^(1/3) rule of the

@@ -196,4 +196,30 @@ TEST(Multipole, MirroredMonopolesInClosedFormEqualTheEightImages) {
   }
 }
 
+// Several classes of one position in one call (as the transfer's expansion adds them) against
+// the 8 images of every class summed one monopole at a time.
+TEST(Multipole, MirroredMonopolesOfSeveralClassesAtOnceEqualTheirImages) {
+  const Eigen::Vector3d y(0.05, 0.41, 0.17);
+  const double k = 9.0;
+  const int order = source_order(k, y.norm());
+  const std::vector<int> sigmas{0, 3, 5, 6, 7};
+  std::vector<std::complex<double>> strengths;
+  std::vector<std::complex<double>> direct(static_cast<std::size_t>(harmonic_count(order))), closed = direct;
+  for (const int sigma : sigmas) {
+    strengths.emplace_back(0.2 + 0.1 * sigma, 1.0 - 0.13 * sigma);
+    for (int s = 0; s < 8; ++s) {
+      const Eigen::Vector3d image((s & 1) ? -y.x() : y.x(), (s & 2) ? -y.y() : y.y(), (s & 4) ? -y.z() : y.z());
+      const double sign = __builtin_popcount(static_cast<unsigned>(s & sigma)) % 2 ? -1.0 : 1.0;
+      add_monopole(k, order, image, sign * strengths.back(), direct);
+    }
+  }
+  add_mirrored_monopole(k, order, y, strengths, sigmas, closed);
+  double diff = 0, norm = 0;
+  for (std::size_t i = 0; i < direct.size(); ++i) {
+    diff += std::norm(direct[i] - closed[i]);
+    norm += std::norm(direct[i]);
+  }
+  EXPECT_LT(std::sqrt(diff / norm), 1e-13);
+}
+
 }  // namespace
