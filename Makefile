@@ -25,6 +25,15 @@ MAKEFLAGS += --no-print-directory
 PYTHON = $(shell sed -n 's/^CLATTER_PYTHON:FILEPATH=//p' $(BUILD)/CMakeCache.txt)
 
 FUZZ_BUILD := build/fuzz
+# make demo's plate bank: configs/modal-plate.toml (one entry like the typical piece; the tests'
+# fixture) plus two entries like the scene's thinnest (a:b:c = 0.073:0.608:1) and longest
+# (0.078:0.321:1) pieces, the patch down to a/c = 0.05, and every mode to 20 kHz for pieces up to
+# 0.2 m (k = 4.9; the scene's lowest piece, 4.2 kHz, needs 4.7): ~50 s on 2 ranks, and every piece
+# of the plate gets its whole band (docs/synth.md "Coverage").
+PLATE_BANK := --set modes.largest_piece_m=0.2 --set patch.min_ratio=0.05 --set 'patch.samples=[\
+  [0.10835590983317901, 0.5417795491658951, 0.8335069987167616], \
+  [0.0622547676427212, 0.5185054620106094, 0.8528050362016604], \
+  [0.07406352112697982, 0.3047998754071862, 0.949532322140767]]'
 
 .PHONY: all deps build demo test test-extended fuzz bench clean
 all: build
@@ -50,7 +59,7 @@ demo: build
 	$(PYTHON) analysis/spectrogram.py out/demo/debris.wav
 	$(BUILD)/bin/clatter-sim -c scenes/rockslide.toml -o out/demo/rockslide.json
 	$(BUILD)/bin/clatter-sim -c scenes/plate.toml --set plate.pieces=40 -o out/demo/plate.json
-	mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-plate.toml -o out/demo/modal-plate.h5 --log-view
+	mpiexec -n 2 $(BUILD)/bin/clatter-bank modal -c configs/modal-plate.toml $(PLATE_BANK) -o out/demo/modal-plate.h5 --log-view
 	mpiexec -n 2 $(BUILD)/bin/clatter-bank object -c configs/object-plate.toml -o out/demo/objects-plate.h5 --log-view
 	$(BUILD)/bin/clatter-bank info out/demo/objects-plate.h5
 	$(BUILD)/bin/clatter-synth -i out/demo/plate.json -b out/demo/bank.h5 -m out/demo/modal-plate.h5 -O out/demo/objects-plate.h5 -g out/demo/ground.h5 -o out/demo/plate.wav --stems
