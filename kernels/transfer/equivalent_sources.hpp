@@ -83,8 +83,7 @@ struct ClassField {
   int sigma = 0;
   std::vector<std::complex<double>> pressure, normal_derivative;
 };
-// kNormalDerivative leaves the pressures 0: the boundary residual needs dp/dn alone, and the
-// pressures' class sums were a fifth of a flat mode's transfer.
+// kNormalDerivative leaves the pressures 0: the boundary residual needs dp/dn alone.
 enum class FieldParts { kPressureAndNormalDerivative, kNormalDerivative };
 std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const SourceLayout& layout,
                                      const SurfacePoints& points,
