@@ -77,14 +77,14 @@ std::complex<double> class_sum(const double (&re)[8], const double (&im)[8], int
   return {sum_re, sum_im};
 }
 
-// A row's panels: the stretches that one sample of its coarsest level stands for (level l has
+// A row's panels: the stretches that one cell of its coarsest level stands for (level l has
 // size / panels samples per panel, in order), as bounding spheres of their finest samples.
 struct Panel {
   Eigen::Vector3d center;
   double radius_m = 0;
 };
 std::vector<Panel> panels_of(const SpreadRow& row) {
-  const std::size_t panels = row.levels.back().size(), per = row.levels.front().size() / panels;
+  const std::size_t panels = row.panels, per = row.levels.front().size() / panels;
   std::vector<Panel> out(panels);
   for (std::size_t j = 0; j < panels; ++j) {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
@@ -97,11 +97,11 @@ std::vector<Panel> panels_of(const SpreadRow& row) {
   return out;
 }
 
-// How finely a point sees a panel: the coarsest level whose spacing s is within `most_m` and
-// whose distance to the panel (less half a spacing) is at least `distance` s. The midpoint rule
-// of a smooth density at spacing s is off by ~e^(-2 pi D / s) at distance D near the row, but by
-// ~(k s)^2 / 24 in what radiates, at any distance; levels are tried coarsest first, so only the
-// panels near a point pay for the finer spacings.
+// How finely a point sees a panel: the coarsest level whose cells s are within `most_m` and whose
+// distance to the panel (less half a cell) is at least `distance` s. A coarser level's two Gauss
+// points per cell are off by ~(s / D)^4 / 4320 of the cell's share at distance D, and by
+// ~(k s)^4 / 4320 in what radiates; levels are tried coarsest first, so only the panels near a
+// point pay for the finer spacings.
 struct LevelRule {
   double distance, most_m;
 };
@@ -130,13 +130,13 @@ void for_each_sample(const SpreadRow& row, const SurfacePoints& points, const Le
   }
 }
 
-// The fill's rule: a fit point at least kLevelDistance spacings from a panel (e^(-4 pi) ~ 3.5e-6),
-// spacings within a tenth of the air wavelength.
-LevelRule fill_rule(double k) { return {kLevelDistance, 2 * std::numbers::pi / k / 10}; }
-// The field's (residual, checks): 4 spacings (e^(-8 pi) ~ 1e-11), within a 30th of the wavelength,
-// so that what radiates differs from the finest samples' field by ~(2 pi / 30)^2 / 24 ~ 2e-3 of
-// the far panels' share at most, and the fill's approximation still shows in the residual.
-LevelRule field_rule(double k) { return {2 * kLevelDistance, 2 * std::numbers::pi / k / 30}; }
+// The fill's and the field's (residual, checks) rule: a point at least kLevelDistance cells from a
+// panel (2^-4 / 4320 ~ 1.4e-5 of its share), cells within a tenth of the air wavelength (~3.6e-5
+// in what radiates). With a midpoint per cell the field needed 4 cells and a 30th of the
+// wavelength, and even so read the thinnest entries' lowest residuals 10-15 % low (the cell's
+// quadrupole, docs/transfer.md "The check's own accuracy"); with two Gauss points the residual
+// reads the same at 2, 4 and 8 cells to 0.5 %, and at a 10th or a 30th of the wavelength.
+LevelRule level_rule(double k) { return {kLevelDistance, 2 * std::numbers::pi / k / 10}; }
 
 // Row i, column j of class sigma: sqrt(w_i) d/dn_i of sum_t sign(t, sigma) G(x_i, mirror_t(y_j)),
 // for every requested class in one pass over the images (the Green's functions, not the classes,
@@ -171,7 +171,7 @@ std::vector<Eigen::MatrixXcd> system_matrices(double k, const SurfacePoints& fit
   // sums in the same order: an entry's terms still come sample by sample, tap by tap).
   std::vector<std::vector<std::complex<double>>> column(sigmas.size());
   for (const SpreadRow& row : layout.spread)
-    for_each_sample(row, fit, fill_rule(k), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
+    for_each_sample(row, fit, level_rule(k), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
       const auto images = images_of(p.position_m);
       ImageGreens g;
       for (auto& col : column) col.resize(near.size());
@@ -323,12 +323,11 @@ std::vector<ClassField> class_fields(double k_rad_m, const SourceFit& fit, const
     add_fields(k_rad_m, layout.sources.position_m, strengths, points, all, parts, out);
     return out;
   }
-  // The field of the finest samples, each panel taken as coarsely as field_rule allows (much
-  // stricter than the fill's): the residual and the far-field checks see the sources the expansion
-  // is built from, and what the fill approximated shows in the residual.
+  // The field of the finest samples, each panel taken as coarsely as level_rule allows: the
+  // residual and the far-field checks see the sources the expansion is built from.
   std::vector<std::vector<std::complex<double>>> strengths(fit.classes.size(), std::vector<std::complex<double>>(1));
   for (const SpreadRow& row : layout.spread)
-    for_each_sample(row, points, field_rule(k_rad_m), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
+    for_each_sample(row, points, level_rule(k_rad_m), [&](const SpreadPoint& p, const std::vector<std::size_t>& near) {
       for (std::size_t c = 0; c < fit.classes.size(); ++c) strengths[c][0] = sample_strength(p, fit.classes[c]);
       add_fields(k_rad_m, std::span(&p.position_m, 1), strengths, points, near, parts, out);
     });
@@ -340,8 +339,8 @@ double green_evaluations(double k_rad_m, const SourceLayout& layout, const Surfa
   double total = 0;
   const auto count = [&](const SpreadPoint&, const std::vector<std::size_t>& near) { total += static_cast<double>(near.size()); };
   for (const SpreadRow& row : layout.spread) {
-    for_each_sample(row, fit, fill_rule(k_rad_m), count);
-    for_each_sample(row, check, field_rule(k_rad_m), count);
+    for_each_sample(row, fit, level_rule(k_rad_m), count);
+    for_each_sample(row, check, level_rule(k_rad_m), count);
   }
   return total;
 }

@@ -32,15 +32,17 @@ struct SpreadPoint {
   }
 };
 
-// One row of samples of the spread sources, at levels of spacing: levels[0] within the row's depth
-// (the field's definition: the residual, the field and the expansion use it), each next one about
-// 4x coarser, down to one sample per panel (the stretch one coarsest sample stands for; level l
-// has size / panels samples per panel, in order). A level spaced s integrates the smooth density
-// to ~e^(-2 pi D / s) at distance D, so a point at least kLevelDistance s from a panel may see it
-// at that level in the fill (e^(-4 pi) ~ 3.5e-6), if s is also within a tenth of the wavelength.
+// One row of samples of the spread sources, at levels of spacing: levels[0], a midpoint per cell
+// within the row's depth (the field's definition: the residual, the field and the expansion use
+// it); each next level has cells about 4x larger, two Gauss-Legendre points each, down to one cell
+// per panel (the stretch one coarsest cell stands for; level l has size / panels samples per
+// panel, in order). A cell of size s seen from distance D through its two points is off by
+// ~(s / D)^4 / 4320 of its share (a midpoint's (s / D)^2 / 24, the cell's quadrupole, read the
+// residual 10-15 % low), so a point at least kLevelDistance s from a panel may see it at that level.
 struct SpreadRow {
   std::vector<std::vector<SpreadPoint>> levels;
-  std::vector<double> spacing_m;  // largest gap between neighbouring samples, per level
+  std::vector<double> spacing_m;  // largest gap between neighbouring cells, per level
+  std::size_t panels = 1;         // the coarsest level's cells; level l has levels[l].size() / panels samples per panel
 };
 inline constexpr double kLevelDistance = 2.0;
 

@@ -194,18 +194,24 @@ struct NodeGrid {
   }
 };
 
-// One row of samples of the density at t, `count` equally spaced in p, each weighted by its area
-// on the inner ellipsoid (so that the samples integrate the density by the midpoint rule).
+// One row of samples of the density at t over `count` equal cells in p, weighted by their area on
+// the inner ellipsoid: one at each cell's middle (the midpoint rule), or with `gauss` two at its
+// Gauss-Legendre points. A far point sees a cell of size s at distance D through the midpoint rule
+// to ~(s / D)^2 / 24 of its share (the quadrupole of the cell), and through the two points to
+// ~(s / D)^4 / 4320.
 std::vector<SpreadPoint> row_samples(const std::array<double, 3>& inner, const NodeGrid& nodes, double t, double dt,
-                                     int count) {
+                                     int count, bool gauss) {
   const double dp = std::numbers::pi / 2 / count, h = 1e-6;
+  const std::vector<double> at = gauss ? std::vector<double>{0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)}
+                                       : std::vector<double>{0.5};
   std::vector<SpreadPoint> out;
-  for (int q = 0; q < count; ++q) {
-    const double p = (q + 0.5) * dp;
-    const Eigen::Vector3d x = RimLayer::at(inner, t, p);
-    const Eigen::Vector3d xt = (RimLayer::at(inner, t + h, p) - x) / h, xp = (RimLayer::at(inner, t, p + h) - x) / h;
-    out.push_back({x, nodes.taps_at(t, p, xt.cross(xp).norm() * dt * dp)});
-  }
+  for (int q = 0; q < count; ++q)
+    for (const double f : at) {
+      const double p = (q + f) * dp;
+      const Eigen::Vector3d x = RimLayer::at(inner, t, p);
+      const Eigen::Vector3d xt = (RimLayer::at(inner, t + h, p) - x) / h, xp = (RimLayer::at(inner, t, p + h) - x) / h;
+      out.push_back({x, nodes.taps_at(t, p, xt.cross(xp).norm() * dt * dp / static_cast<double>(at.size()))});
+    }
   return out;
 }
 
@@ -239,11 +245,14 @@ Grids make_rim_grids(const std::array<double, 3>& axes, double k, double data_sp
     const double t = (r + 0.5) * dt;
     const int coarse = layer.along(t, false, kMinimumNodes), dense = std::max(coarse, layer.along(t, true, kMinimumNodes));
     SpreadRow row;
+    row.panels = static_cast<std::size_t>(coarse);
     for (int per = (dense + coarse - 1) / coarse;; per = std::max(1, per / 4)) {
-      row.levels.push_back(row_samples(layer.inner, nodes, t, dt, coarse * per));
+      const bool coarser = !row.levels.empty();  // the finest level defines the field: midpoints
+      row.levels.push_back(row_samples(layer.inner, nodes, t, dt, coarse * per, coarser));
       const auto& samples = row.levels.back();
+      const std::size_t step = coarser ? 2 : 1;  // a cell's spacing: its sample and the next cell's alike
       double gap = 0;
-      for (std::size_t q = 1; q < samples.size(); ++q) gap = std::max(gap, (samples[q].position_m - samples[q - 1].position_m).norm());
+      for (std::size_t q = step; q < samples.size(); ++q) gap = std::max(gap, (samples[q].position_m - samples[q - step].position_m).norm());
       row.spacing_m.push_back(gap);
       if (per == 1) break;
     }
