@@ -2,8 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 
 #include "kernels/transfer/equivalent_sources.hpp"
@@ -202,8 +204,9 @@ struct NodeGrid {
 std::vector<SpreadPoint> row_samples(const std::array<double, 3>& inner, const NodeGrid& nodes, double t, double dt,
                                      int count, bool gauss) {
   const double dp = std::numbers::pi / 2 / count, h = 1e-6;
-  const std::vector<double> at = gauss ? std::vector<double>{0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)}
-                                       : std::vector<double>{0.5};
+  const std::array<double, 2> pair{0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
+  const std::array<double, 1> middle{0.5};
+  const std::span<const double> at = gauss ? std::span<const double>(pair) : std::span<const double>(middle);
   std::vector<SpreadPoint> out;
   for (int q = 0; q < count; ++q)
     for (const double f : at) {

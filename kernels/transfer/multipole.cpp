@@ -74,11 +74,6 @@ void add_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::co
   }
 }
 
-void add_mirrored_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::complex<double> strength,
-                           int sigma, std::vector<std::complex<double>>& coefficients) {
-  add_mirrored_monopole(k_rad_m, order, y_m, std::span(&strength, 1), std::span(&sigma, 1), coefficients);
-}
-
 void add_mirrored_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m,
                            std::span<const std::complex<double>> strengths, std::span<const int> sigmas,
                            std::vector<std::complex<double>>& coefficients) {

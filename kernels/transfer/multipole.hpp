@@ -31,13 +31,11 @@ void pressure_magnitudes(std::span<const Multipole* const> modes, const Eigen::V
 void add_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::complex<double> strength,
                   std::vector<std::complex<double>>& coefficients);
 
-// The same for the 8 mirror images of y (mirror s: ellipsoid_points.hpp), image s with strength
-// parity_sign(s, sigma) * strength, summed in closed form from Y_n^m(y-hat) alone: flipping x
-// maps conj Y_n^m to (-1)^m Y_n^m, flipping y to Y_n^m, flipping z multiplies by (-1)^(n+m).
-void add_mirrored_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m, std::complex<double> strength,
-                           int sigma, std::vector<std::complex<double>>& coefficients);
-// The same for one position in several parity classes (strengths[c] in class sigmas[c]): the
-// Bessel functions and harmonics, most of the cost, once.
+// The same for the 8 mirror images of y (mirror s: ellipsoid_points.hpp) in several parity
+// classes: image s with strength parity_sign(s, sigmas[c]) * strengths[c] for each class c, summed
+// in closed form from Y_n^m(y-hat) alone (flipping x maps conj Y_n^m to (-1)^m Y_n^m, flipping y to
+// Y_n^m, flipping z multiplies by (-1)^(n+m)); the Bessel functions and harmonics, most of the
+// cost, once for all the classes.
 void add_mirrored_monopole(double k_rad_m, int order, const Eigen::Vector3d& y_m,
                            std::span<const std::complex<double>> strengths, std::span<const int> sigmas,
                            std::vector<std::complex<double>>& coefficients);

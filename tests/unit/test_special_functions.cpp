@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <vector>
 #include <numbers>
 
@@ -186,7 +187,7 @@ TEST(Multipole, MirroredMonopolesInClosedFormEqualTheEightImages) {
       const double sign = __builtin_popcount(static_cast<unsigned>(s & sigma)) % 2 ? -1.0 : 1.0;
       add_monopole(k, order, image, sign * strength, direct);
     }
-    add_mirrored_monopole(k, order, y, strength, sigma, closed);
+    add_mirrored_monopole(k, order, y, std::span(&strength, 1), std::span(&sigma, 1), closed);
     double diff = 0, norm = 0;
     for (std::size_t i = 0; i < direct.size(); ++i) {
       diff += std::norm(direct[i] - closed[i]);
