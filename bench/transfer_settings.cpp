@@ -101,8 +101,8 @@ int run(int argc, char** argv) {
       for (unsigned char b : bytes) digest = (digest ^ b) * 1099511628211ull;
     }
     std::printf("mode %zu %.1f Hz: %.2f s, %d sources, %d fit points, residual %.2e, normal fraction %.2f, order %d, "
-                "coefficients' digest %016llx\n", mode, entry.frequencies_hz[mode], s, t.sources, t.fit_points,
-                t.boundary_residual, t.normal_fraction, t.expansion.order, static_cast<unsigned long long>(digest));
+                "%d classes, %d attempts, coefficients' digest %016llx\n", mode, entry.frequencies_hz[mode], s, t.sources, t.fit_points,
+                t.boundary_residual, t.normal_fraction, t.expansion.order, t.classes, t.attempts, static_cast<unsigned long long>(digest));
     if (where) residual_by_zone(entry.axes_m, 2 * std::numbers::pi * entry.frequencies_hz[mode], settings, u, t);
   }
   return 0;

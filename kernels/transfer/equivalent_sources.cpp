@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <span>
@@ -216,40 +217,48 @@ Eigen::VectorXcd solve_regularized_least_squares(const Eigen::MatrixXcd& a, cons
 }
 
 SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredData& g, const SourceLayout& layout,
-                      double class_threshold) {
+                      double class_budget) {
   SourceFit out;
   const auto m = static_cast<Eigen::Index>(fit.size());
   double total = 0;
   for (int s = 0; s < 8; ++s)
     for (std::size_t i = 0; i < fit.size(); ++i) total += fit.weight_m2[i] * g[static_cast<std::size_t>(s)][i] * g[static_cast<std::size_t>(s)][i];
   out.data_norm = std::sqrt(total);
-  std::vector<int> sigmas;
-  std::vector<Eigen::VectorXcd> rhs;
-  std::vector<double> norms;
+  std::array<Eigen::VectorXcd, 8> rhs;
+  std::array<double, 8> norm2{};
   for (int sigma = 0; sigma < 8; ++sigma) {
     // g_sigma(x) = 1/8 sum_s sign(s) g(mirror_s x); ||g||^2 = 8 sum_sigma ||g_sigma||^2 on the octant.
-    Eigen::VectorXcd b(m);
-    double norm2 = 0;
+    Eigen::VectorXcd& b = rhs[static_cast<std::size_t>(sigma)];
+    b.resize(m);
     for (Eigen::Index i = 0; i < m; ++i) {
       double v = 0;
       for (int s = 0; s < 8; ++s) v += parity_sign(s, sigma) * g[static_cast<std::size_t>(s)][static_cast<std::size_t>(i)];
       v /= 8;
       b(i) = std::sqrt(fit.weight_m2[static_cast<std::size_t>(i)]) * v;
-      norm2 += 8 * std::norm(b(i));
+      norm2[static_cast<std::size_t>(sigma)] += 8 * std::norm(b(i));
     }
-    if (total == 0 || norm2 < class_threshold * class_threshold * total) continue;  // counted in the residual
-    sigmas.push_back(sigma);
-    rhs.push_back(std::move(b));
-    norms.push_back(std::sqrt(norm2));
   }
+  // The smallest classes left out first, while together they stay within the budget (the check
+  // measures the residual with them).
+  std::array<int, 8> by_size{0, 1, 2, 3, 4, 5, 6, 7};
+  std::stable_sort(by_size.begin(), by_size.end(), [&](int x, int y) { return norm2[static_cast<std::size_t>(x)] < norm2[static_cast<std::size_t>(y)]; });
+  std::vector<int> sigmas;
+  double left_out2 = 0;
+  for (const int sigma : by_size) {
+    const double n2 = norm2[static_cast<std::size_t>(sigma)];
+    if (total == 0 || left_out2 + n2 <= class_budget * class_budget * total) left_out2 += n2;
+    else sigmas.push_back(sigma);
+  }
+  std::sort(sigmas.begin(), sigmas.end());
+  out.left_out_share = total > 0 ? std::sqrt(left_out2 / total) : 0.0;
   const auto matrices = system_matrices(k_rad_m, fit, layout, sigmas);
   for (std::size_t c = 0; c < sigmas.size(); ++c) {
     const auto& a = matrices[c];
-    const auto& b = rhs[c];
+    const auto& b = rhs[static_cast<std::size_t>(sigmas[c])];
     ParityFit pf;
     pf.sigma = sigmas[c];
     pf.strengths = solve_regularized_least_squares(a, b);
-    pf.data_norm = norms[c];
+    pf.data_norm = std::sqrt(norm2[static_cast<std::size_t>(sigmas[c])]);
     pf.amplification = a.norm() * pf.strengths.norm() / b.norm();
     out.classes.push_back(std::move(pf));
   }

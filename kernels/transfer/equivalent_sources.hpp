@@ -67,6 +67,7 @@ struct ParityFit {
 struct SourceFit {
   std::vector<ParityFit> classes;  // the fitted classes only
   double data_norm = 0;            // ||g|| over the whole surface
+  double left_out_share = 0;       // ||g|| of the classes not fitted / ||g||
 };
 
 // min ||A c - b||^2 + mu^2 ||c||^2, mu = 1e-10 ||A||_F / sqrt(columns), by LAPACK's QR least
@@ -74,9 +75,11 @@ struct SourceFit {
 // and mu keeps c bounded without touching the fit. Serial, so the same on any rank.
 Eigen::VectorXcd solve_regularized_least_squares(const Eigen::MatrixXcd& a, const Eigen::VectorXcd& b);
 
-// Fits every parity class of `g` whose share of ||g|| is at least `class_threshold`.
+// Fits the parity classes of `g` but the smallest ones that together carry at most `class_budget`
+// of ||g|| (on a mesh that is not mirror-symmetric, a mode of one class has all eight, the seven
+// others at its discretization error, ~1e-3 each).
 SourceFit fit_sources(double k_rad_m, const SurfacePoints& fit, const MirroredData& g, const SourceLayout& layout,
-                      double class_threshold);
+                      double class_budget);
 
 // p and dp/dn of each fitted class on the first-octant points; at mirror s the field is
 // sum over classes of parity_sign(s, sigma) times these (a field of class sigma is that sign

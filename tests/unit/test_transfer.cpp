@@ -243,3 +243,49 @@ TEST(TransferPlateSlow, ThinnestEntryWithinTwoPercent) {
   }
 }
 }  // namespace
+
+namespace {
+// The parity classes a fit leaves out (kernels/transfer fit_sources): data made of eight classes
+// of known norms (g[s][i] = sum_sigma a_sigma sign(s, sigma) f_sigma(i), f_sigma of unit weighted
+// norm, so class sigma's share of ||g|| is a_sigma / ||a||, by the signs' orthogonality). The
+// smallest classes are left out while together within the budget.
+TEST(TransferClasses, SmallestClassesLeftOutWithinTheBudget) {
+  const std::array<double, 3> axes{kA, kA, kA};
+  const SurfacePoints fit = octant_grid(axes, 10, 10);
+  SourceLayout layout;
+  layout.sources = inner_layer(axes, octant_grid(axes, 4, 4), 0.5);
+  const std::array<double, 8> a{1, 1e-3, 2e-3, 3e-3, 4e-3, 6e-3, 0, 2.5e-3};
+  std::array<std::vector<double>, 8> f;
+  for (int sigma = 0; sigma < 8; ++sigma) {
+    double norm2 = 0;
+    for (std::size_t i = 0; i < fit.size(); ++i) {
+      f[sigma].push_back(std::cos(1.7 * static_cast<double>(i) + 0.9 * sigma) + 0.3);
+      norm2 += 8 * fit.weight_m2[i] * f[sigma][i] * f[sigma][i];
+    }
+    for (double& v : f[sigma]) v /= std::sqrt(norm2);
+  }
+  MirroredData g;
+  for (int s = 0; s < 8; ++s)
+    for (std::size_t i = 0; i < fit.size(); ++i) {
+      double v = 0;
+      for (int sigma = 0; sigma < 8; ++sigma) v += a[sigma] * parity_sign(s, sigma) * f[sigma][i];
+      g[s].push_back(v);
+    }
+  double total2 = 0;
+  for (double x : a) total2 += x * x;
+  const auto fitted = [](const SourceFit& fit_) {
+    std::vector<int> out;
+    for (const auto& c : fit_.classes) out.push_back(c.sigma);
+    return out;
+  };
+  // Budget 5e-3: 0, 1e-3, 2e-3, 2.5e-3 and 3e-3 together are 4.5e-3; with 4e-3 they would be 6.0e-3.
+  const SourceFit some = fit_sources(1.0, fit, g, layout, 5e-3);
+  EXPECT_EQ(fitted(some), (std::vector<int>{0, 4, 5}));
+  EXPECT_NEAR(some.left_out_share, 4.5e-3 / std::sqrt(total2), 1e-12);
+  EXPECT_NEAR(some.data_norm, std::sqrt(total2), 1e-12);
+  // Budget 1e-3 (a refit's): the class without data (its rounding, ~1e-17) and the 1e-3.
+  const SourceFit most = fit_sources(1.0, fit, g, layout, 1e-3);
+  EXPECT_EQ(fitted(most), (std::vector<int>{0, 2, 3, 4, 5, 7}));
+  EXPECT_NEAR(most.left_out_share, 1e-3 / std::sqrt(total2), 1e-12);
+}
+}  // namespace
