@@ -20,31 +20,42 @@
 namespace clatter::jobs {
 namespace {
 
-// The eigen-solve ~ dofs^1.05 (1 + modes / 2.8): a fixed share (the slice's end factorizations and
-// the count check) and one per mode (shifts and solves with the factors). Fitted, with the
-// transfer's constants below, to the 77 entries of the default bank (2026-12-05, 2 358 to 125 199
-// dofs, 11 to 65 modes; docs/benchmarks.md "The default bank of 77 entries") anchored on its
-// smallest entry as `plan` is: 63 of 77 within 30 %, the whole bank within 4 %. (The former
-// 1.34 and 18 came from 5 entries and over-predicted this bank 1.6x.) The pre-solve (one
-// factorization and a few Krylov restarts on the coarse mesh) grows like its dofs; mesh and
-// assembly like the entry's.
-constexpr double kDofsExponent = 1.05;
-constexpr double kModesPerFixedShare = 2.8;
+// The cost model, fitted to the 77 entries of the default bank (docs/benchmarks.md "The plan's
+// cost model, refitted"), each stage scaled by what the calibration entries measure:
+// - the eigen-solve ~ dofs^1.10 (1 + modes / 13.5): a fixed share (the slice's end
+//   factorizations and the count check) and one per mode (shifts and solves with the factors);
+// - the pre-solve (one factorization and a few Krylov restarts on the coarse mesh) like its dofs,
+//   mesh and assembly like the entry's;
+// - the transfer per mode a fixed part (the surface data, the multipole expansion) and one that
+//   grows with the work of its layouts' fits (kernels/transfer layout_size: the QR's fit points x
+//   unknowns^2 per parity class fitted, and the Green's functions of the fill and the check) to the
+//   power 1.30, the fixed part worth work^1.30 = 4.7e10.
+constexpr double kDofsExponent = 1.10;
+constexpr double kModesPerFixedShare = 13.5;
 constexpr double kEstimateExponent = 1.0;
 // Factor memory of 3-D nested dissection grows like n^(4/3).
 constexpr double kMemoryExponent = 4.0 / 3.0;
 // Measured (docs/benchmarks.md "Modal bank"): 2 ranks per task run the default sphere entry 1.23x
 // faster than 1 (the slicing's triangular solves scale poorly), 2^0.3 = 1.23.
 constexpr double kGroupSpeedupExponent = 0.3;
-// The transfer's time per mode is a fixed part (the surface data, the multipole expansion) plus one
-// that scales with the work of its layouts' fits (kernels/transfer layout_size: the QR's fit points
-// x unknowns^2 and the Green's functions of the fill and the check, set by the air wavelength, the
-// mesh's spacing and the shape's layout) to the power 1.11, the fixed part worth work^1.11 = 5e8;
-// the work is averaged over the entry's modes, whose density grows like f^2 on a bulky entry
-// (Weyl) and like f on a flat one (a plate's); spread evenly over a group. Fitted with the FEM's
-// constants above (the former work^0.8 alone left the thin entries' share 2x off).
-constexpr double kTransferWorkExponent = 1.11;
-constexpr double kTransferFixedWork = 5e8;
+constexpr double kTransferWorkExponent = 1.30;
+constexpr double kTransferFixedWork = 4.7e10;
+// The parity classes a mode fits (mode_transfer.cpp): one on a body of three distinct axes (the
+// others are the mesh's noise, within TransferSettings::class_budget), two for most modes of a
+// spheroid (a doublet's two modes mix their classes), most of the eight for a sphere's
+// multiplets. As factors on the work, fitted with the constants above (the one sphere: 5.3).
+double class_work_factor(const std::array<double, 3>& axes) {
+  const auto same = [](double x, double y) { return std::abs(x - y) <= 1e-6 * std::max(x, y); };
+  const int pairs = same(axes[0], axes[1]) + same(axes[1], axes[2]) + same(axes[0], axes[2]);
+  return pairs == 3 ? 5.3 : pairs == 1 ? 1.64 : 1.0;
+}
+// The calibration: the few smallest entries, solved in full as the sweep will, each stage's scale
+// their geometric mean, which tames one small entry's timing noise (docs/benchmarks.md "The plan's
+// cost model, refitted").
+constexpr std::size_t kCalibrationEntries = 3;
+
+// The transfer's work per mode, averaged over the entry's band with the modes' density, which
+// grows like f^2 on a bulky entry (Weyl) and like f on a flat one (a plate's).
 double transfer_work(const ModalSpec& spec, const std::array<double, 3>& axes, double f1_hz, double f_max_hz,
                      const kernels::fem::EllipsoidMesh& mesh) {
   std::vector<std::array<double, 3>> nodes;
@@ -61,7 +72,7 @@ double transfer_work(const ModalSpec& spec, const std::array<double, 3>& axes, d
     work += w * kernels::transfer::layout_size(axes, 2 * std::numbers::pi * f, spacing_m, spec.header.transfer).work;
     weight += w;
   }
-  return work / weight;
+  return class_work_factor(axes) * work / weight;
 }
 
 struct EntryPlan {
@@ -100,21 +111,51 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
   const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < tasks.size(); ++i) entries.push_back(plan_entry(spec, i));
   const double presolve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  // Calibration: the smallest entry that meshes, solved in full as the sweep will.
-  std::size_t cal = tasks.size();
+  std::vector<std::size_t> cal;  // the calibration entries: the smallest that mesh
   for (std::size_t i = 0; i < entries.size(); ++i)
-    if (entries[i].failure.empty() && (cal == tasks.size() || entries[i].dofs < entries[cal].dofs)) cal = i;
-  if (cal == tasks.size()) throw InputError("plan: no entry of the sweep meshes; see mesh.* and patch.samples");
-  const auto entry = build_modal_entry(MPI_COMM_SELF, spec, cal);
-  const double cal_transfer_s = entry.cost.transfer_s, cal_estimate_s = entry.cost.estimate_s,
-               cal_setup_s = entry.cost.mesh_s + entry.cost.assembly_s,
-               cal_solve_s = entry.cost.total_s - cal_transfer_s - cal_estimate_s - cal_setup_s;
-  const double cal_modes = static_cast<double>(std::max<std::size_t>(entry.modes(), 1));
+    if (entries[i].failure.empty()) cal.push_back(i);
+  if (cal.empty()) throw InputError("plan: no entry of the sweep meshes; see mesh.* and patch.samples");
+  std::sort(cal.begin(), cal.end(), [&](std::size_t x, std::size_t y) { return entries[x].dofs < entries[y].dofs; });
+  cal.resize(std::min(cal.size(), kCalibrationEntries));
+  // Each stage's model, per entry; `modes` the count the entry has (measured or predicted).
+  const auto estimate_model = [](const EntryPlan& p) { return std::pow(static_cast<double>(p.coarse_dofs), kEstimateExponent); };
+  const auto setup_model = [](const EntryPlan& p) { return static_cast<double>(p.dofs); };
+  const auto solve_model = [](const EntryPlan& p, double modes) {
+    return std::pow(static_cast<double>(p.dofs), kDofsExponent) * (1 + modes / kModesPerFixedShare);
+  };
+  const auto transfer_model = [](const EntryPlan& p, double modes) {
+    return modes * (kTransferFixedWork + std::pow(p.transfer_work, kTransferWorkExponent));
+  };
+  // Each stage's scale: the geometric mean over the calibration entries of measured / model.
+  double log_estimate = 0, log_setup = 0, log_solve = 0, log_transfer = 0, log_memory = 0;
+  double found_modes = 0, coarse_modes = 0, cal_s = 0;
+  std::string cal_text;
+  for (const std::size_t i : cal) {
+    const auto entry = build_modal_entry(MPI_COMM_SELF, spec, i);
+    const auto& c = entry.cost;
+    const double modes = static_cast<double>(std::max<std::size_t>(entry.modes(), 1));
+    // A floor of 1 ms keeps a stage too quick to time from taking the logarithm of zero.
+    const auto at_least = [](double t_s) { return std::max(t_s, 1e-3); };
+    const double setup_s = c.mesh_s + c.assembly_s, solve_s = c.total_s - c.transfer_s - c.estimate_s - setup_s;
+    log_estimate += std::log(at_least(c.estimate_s) / estimate_model(entries[i]));
+    log_setup += std::log(at_least(setup_s) / setup_model(entries[i]));
+    log_solve += std::log(at_least(solve_s) / solve_model(entries[i], modes));
+    log_transfer += std::log(at_least(c.transfer_s) / transfer_model(entries[i], modes));
+    // MUMPS' own figure: the process's resident size here also holds every pre-solve before it.
+    log_memory += std::log(std::max(c.factor_memory_mb, 1.0) / std::pow(static_cast<double>(entry.mesh.dofs), kMemoryExponent));
+    found_modes += modes;
+    coarse_modes += static_cast<double>(std::max<long long>(entries[i].modes, 1));
+    cal_s += c.total_s;
+    cal_text += fmt::format("{}{} ({} dofs, {} modes: {:.1f} s + {:.1f} s transfer)", cal_text.empty() ? "" : ", ",
+                            tasks[i].name, entry.mesh.dofs, entry.modes(), c.total_s - c.transfer_s, c.transfer_s);
+  }
+  const double n_cal = static_cast<double>(cal.size());
+  const double estimate_scale = std::exp(log_estimate / n_cal), setup_scale = std::exp(log_setup / n_cal),
+               solve_scale = std::exp(log_solve / n_cal), transfer_scale = std::exp(log_transfer / n_cal),
+               memory_scale = std::exp(log_memory / n_cal);
   // The coarse mesh undercounts the top of the range (its frequencies are high): scaled by what
-  // the calibration entry's fine solve found against its coarse count.
-  const double count_scale = cal_modes / static_cast<double>(std::max<long long>(entries[cal].modes, 1));
-  // MUMPS' own figure: the process's resident size here also holds every pre-solve before it.
-  const double cal_dofs = static_cast<double>(entry.mesh.dofs), cal_memory = entry.cost.factor_memory_mb;
+  // the calibration entries' fine solves found against their coarse counts.
+  const double count_scale = found_modes / coarse_modes;
   const double group_speedup = std::pow(o.ranks_per_task, kGroupSpeedupExponent);
   PlanEstimate e;
   double core_s = 0, worst_memory = 0;
@@ -124,16 +165,10 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
       continue;
     }
     p.modes = std::llround(static_cast<double>(p.modes) * count_scale);
-    const double dofs_ratio = static_cast<double>(p.dofs) / cal_dofs;
-    const double mode_ratio = static_cast<double>(p.modes) / cal_modes;
-    const double coarse_ratio = static_cast<double>(p.coarse_dofs) / static_cast<double>(entries[cal].coarse_dofs);
-    const double fem_s = cal_estimate_s * std::pow(coarse_ratio, kEstimateExponent) + cal_setup_s * dofs_ratio +
-                         cal_solve_s * std::pow(dofs_ratio, kDofsExponent) * (1 + static_cast<double>(p.modes) / kModesPerFixedShare) /
-                             (1 + cal_modes / kModesPerFixedShare);
-    const double work_share = (kTransferFixedWork + std::pow(p.transfer_work, kTransferWorkExponent)) /
-                              (kTransferFixedWork + std::pow(entries[cal].transfer_work, kTransferWorkExponent));
-    p.task_s = fem_s / group_speedup + cal_transfer_s * mode_ratio * work_share / o.ranks_per_task;
-    p.memory_mb = cal_memory * std::pow(dofs_ratio, kMemoryExponent) / o.ranks_per_task;
+    const double modes = static_cast<double>(p.modes);
+    const double fem_s = estimate_scale * estimate_model(p) + setup_scale * setup_model(p) + solve_scale * solve_model(p, modes);
+    p.task_s = fem_s / group_speedup + transfer_scale * transfer_model(p, modes) / o.ranks_per_task;
+    p.memory_mb = memory_scale * std::pow(static_cast<double>(p.dofs), kMemoryExponent) / o.ranks_per_task;
     e.task_s.push_back(p.task_s);
     core_s += p.task_s * o.ranks_per_task;
     worst_memory = std::max(worst_memory, p.memory_mb);
@@ -149,12 +184,12 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
                          band_text(spec.header));
   e.report += fmt::format("  pre-solves:  every entry's f_1, h, dofs and mode count (coarse inertia) in {:.1f} s here\n",
                           presolve_s);
-  e.report += fmt::format("  calibration: {} solved here in {:.1f} s + {:.1f} s transfer: {} modes, {} dofs, {:.0f} MB MUMPS "
-                          "factors; time ~ (coarse dofs^{} + dofs + dofs^{} (1 + modes/{})) / ranks_per_task^{} + "
-                          "modes x ({:.0e} + (its layouts' work: QR and Green's functions)^{}) / ranks_per_task\n",
-                          tasks[cal].name, entry.cost.total_s - cal_transfer_s, cal_transfer_s, entry.modes(),
-                          entry.mesh.dofs, cal_memory, kEstimateExponent, kDofsExponent, kModesPerFixedShare,
-                          kGroupSpeedupExponent, kTransferFixedWork, kTransferWorkExponent);
+  e.report += fmt::format("  calibration: {} solved here in {:.1f} s: {}; time ~ (coarse dofs^{} + dofs + dofs^{} (1 + modes/{})) "
+                          "/ ranks_per_task^{} + modes x ({:.2g} + (its layouts' work: QR per parity class and Green's "
+                          "functions)^{}) / ranks_per_task, each part scaled by these entries\n",
+                          cal.size() == 1 ? "the smallest entry" : fmt::format("the {} smallest entries", cal.size()), cal_s,
+                          cal_text, kEstimateExponent, kDofsExponent, kModesPerFixedShare, kGroupSpeedupExponent,
+                          kTransferFixedWork, kTransferWorkExponent);
   e.report += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}: {:.2f} core-hours\n",
                           o.ranks, e.nodes, cores, groups, o.ranks_per_task, core_s / 3600);
   e.report += fmt::format("  predicted:   {} wall (tasks handed out in order); largest MUMPS factors per rank ~{:.0f} MB; time "
@@ -166,8 +201,8 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     const auto& a = spec.samples_m[i];
     e.report += p.failure.empty()
                     ? fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  f_1 {:8.1f} Hz  k {:5.2f}  h {:.4f} m  {:7} dofs  ~{:5} modes  "
-                                  "~{}  (coarse {} dofs, transfer work {:.3g} per mode)\n", tasks[i].name, a[0], a[1], a[2],
-                                  p.f1_hz, p.k, p.h_m, p.dofs, p.modes, clock_text(p.task_s), p.coarse_dofs, p.transfer_work)
+                                  "~{:7.1f} s  (coarse {} dofs, transfer work {:.3g} per mode)\n", tasks[i].name, a[0], a[1], a[2],
+                                  p.f1_hz, p.k, p.h_m, p.dofs, p.modes, p.task_s, p.coarse_dofs, p.transfer_work)
                     : fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  will fail: {}\n", tasks[i].name, a[0], a[1], a[2],
                                   p.failure);
   }
