@@ -142,7 +142,7 @@ struct TransferSettings {
   // the seven others at its discretization error (1e-3 - 5e-3 of ||g|| on the default bank's
   // 0.35:0.56:0.75 entry), and fitting them cost up to 8x the one class. Half residual_target,
   // so it adds at most 12 % to a residual at the target; where a mode misses the bank's promise
-  // with classes left out, it is fitted again with every class (mode_transfer.cpp).
+  // with classes left out, it is fitted again with all but 1e-3 of ||g|| (mode_transfer.cpp).
   double class_budget = 5e-3;
   int minimum_per_angle = 6;
   // A ceiling on the sources of one octant (the QR costs their cube): past it both counts shrink

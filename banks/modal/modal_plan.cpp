@@ -43,11 +43,14 @@ constexpr double kTransferFixedWork = 4.7e10;
 // The parity classes a mode fits (mode_transfer.cpp): one on a body of three distinct axes (the
 // others are the mesh's noise, within TransferSettings::class_budget), two for most modes of a
 // spheroid (a doublet's two modes mix their classes), most of the eight for a sphere's
-// multiplets. As factors on the work, fitted with the constants above (the one sphere: 5.3).
+// multiplets. As factors on the work, fitted with the constants above (the sphere's on the one
+// sphere of the default bank).
+constexpr double kSpheroidClassWork = 1.64;
+constexpr double kSphereClassWork = 5.3;
 double class_work_factor(const std::array<double, 3>& axes) {
   const auto same = [](double x, double y) { return std::abs(x - y) <= 1e-6 * std::max(x, y); };
   const int pairs = same(axes[0], axes[1]) + same(axes[1], axes[2]) + same(axes[0], axes[2]);
-  return pairs == 3 ? 5.3 : pairs == 1 ? 1.64 : 1.0;
+  return pairs == 3 ? kSphereClassWork : pairs == 1 ? kSpheroidClassWork : 1.0;
 }
 // The calibration: the few smallest entries, solved in full as the sweep will, each stage's scale
 // their geometric mean, which tames one small entry's timing noise (docs/benchmarks.md "The plan's
@@ -127,6 +130,8 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     return modes * (kTransferFixedWork + std::pow(p.transfer_work, kTransferWorkExponent));
   };
   // Each stage's scale: the geometric mean over the calibration entries of measured / model.
+  // A floor of 1 ms keeps a stage too quick to time from taking the logarithm of zero.
+  const auto at_least = [](double t_s) { return std::max(t_s, 1e-3); };
   double log_estimate = 0, log_setup = 0, log_solve = 0, log_transfer = 0, log_memory = 0;
   double found_modes = 0, coarse_modes = 0, cal_s = 0;
   std::string cal_text;
@@ -134,8 +139,6 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     const auto entry = build_modal_entry(MPI_COMM_SELF, spec, i);
     const auto& c = entry.cost;
     const double modes = static_cast<double>(std::max<std::size_t>(entry.modes(), 1));
-    // A floor of 1 ms keeps a stage too quick to time from taking the logarithm of zero.
-    const auto at_least = [](double t_s) { return std::max(t_s, 1e-3); };
     const double setup_s = c.mesh_s + c.assembly_s, solve_s = c.total_s - c.transfer_s - c.estimate_s - setup_s;
     log_estimate += std::log(at_least(c.estimate_s) / estimate_model(entries[i]));
     log_setup += std::log(at_least(setup_s) / setup_model(entries[i]));

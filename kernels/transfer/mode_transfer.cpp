@@ -392,8 +392,8 @@ ModeTransfer solve_mode_transfer(const std::array<double, 3>& axes_m, double ome
   best.boundary_residual = INFINITY;
   int attempt = 0;
   double previous = INFINITY;
+  double left_out_share = 0;  // of the best attempt's fit
   // Returns the attempt's residual.
-  double left_out_share = 0;  // best's
   const auto try_grids = [&](const Grids& grids, double depth, double class_budget) {
     ++attempt;
     double motion2 = 0;
