@@ -20,26 +20,36 @@
 namespace clatter::jobs {
 namespace {
 
-// The cost model, fitted to the 77 entries of the default bank (docs/benchmarks.md "The plan's
-// cost model, refitted"), each stage scaled by what the calibration entries measure:
-// - the eigen-solve ~ dofs^1.10 (1 + modes / 13.5): a fixed share (the slice's end
+// The cost model, fitted to the 77 entries of the default bank built on one rank per task and on
+// two (docs/benchmarks.md "The plan's cost model, refitted" and "One rank per task or two"), each
+// stage scaled by what the calibration entries, solved here on one rank, measure:
+// - the eigen-solve on one rank ~ dofs^1.20 (1 + modes / 16): a fixed share (the slice's end
 //   factorizations and the count check) and one per mode (shifts and solves with the factors);
 // - the pre-solve (one factorization and a few Krylov restarts on the coarse mesh) like its dofs,
 //   mesh and assembly like the entry's;
+// - the FEM on a group of r ranks faster by r^(0.147 ln(dofs / 3800)), the exponent within [0, 1]:
+//   2 ranks gain nothing below ~4000 dofs (median 1.00 over 7 entries), 1.20x at 10-30k, 1.37x at
+//   70-120k (fitted on the 77 entries' FEM time at 1 and 2 ranks per task; 4 and more ranks are
+//   extrapolated);
 // - the transfer per mode a fixed part (the surface data, the multipole expansion) and one that
 //   grows with the work of its layouts' fits (kernels/transfer layout_size: the QR's fit points x
 //   unknowns^2 per parity class fitted, and the Green's functions of the fill and the check) to the
-//   power 1.30, the fixed part worth work^1.30 = 4.7e10.
-constexpr double kDofsExponent = 1.10;
-constexpr double kModesPerFixedShare = 13.5;
+//   power 1.30, the fixed part worth work^1.30 = 3.4e10; a group's ranks take the modes from a
+//   queue (modal_transfer.cpp), so r ranks take 1/r of the time (its core-seconds at 1 and 2 ranks
+//   per task agree within 3 % per size class).
+constexpr double kDofsExponent = 1.20;
+constexpr double kModesPerFixedShare = 16;
 constexpr double kEstimateExponent = 1.0;
 // Factor memory of 3-D nested dissection grows like n^(4/3).
 constexpr double kMemoryExponent = 4.0 / 3.0;
-// Measured (docs/benchmarks.md "Modal bank"): 2 ranks per task run the default sphere entry 1.23x
-// faster than 1 (the slicing's triangular solves scale poorly), 2^0.3 = 1.23.
-constexpr double kGroupSpeedupExponent = 0.3;
+constexpr double kGroupSpeedupPerLogDofs = 0.147;
+constexpr double kGroupSpeedupFromDofs = 3800;
+double fem_group_speedup(long long dofs, int ranks_per_task) {
+  const double exponent = std::clamp(kGroupSpeedupPerLogDofs * std::log(static_cast<double>(dofs) / kGroupSpeedupFromDofs), 0.0, 1.0);
+  return std::pow(ranks_per_task, exponent);
+}
 constexpr double kTransferWorkExponent = 1.30;
-constexpr double kTransferFixedWork = 4.7e10;
+constexpr double kTransferFixedWork = 3.4e10;
 // The parity classes a mode fits (mode_transfer.cpp): one on a body of three distinct axes (the
 // others are the mesh's noise, within TransferSettings::class_budget), two for most modes of a
 // spheroid (a doublet's two modes mix their classes), most of the eight for a sphere's
@@ -83,6 +93,7 @@ struct EntryPlan {
   double transfer_work = 0;  // per mode (transfer_work above)
   long long dofs = 0, coarse_dofs = 0, modes = 0;
   double task_s = 0, memory_mb = 0;
+  double fem_s = 0, transfer_s = 0;  // task_s's two parts, on the task's group
   std::string failure;  // the mesh or pre-solve failed: the task will fail the same way
 };
 
@@ -159,7 +170,6 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
   // The coarse mesh undercounts the top of the range (its frequencies are high): scaled by what
   // the calibration entries' fine solves found against their coarse counts.
   const double count_scale = found_modes / coarse_modes;
-  const double group_speedup = std::pow(o.ranks_per_task, kGroupSpeedupExponent);
   PlanEstimate e;
   double core_s = 0, worst_memory = 0;
   for (auto& p : entries) {
@@ -170,7 +180,9 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     p.modes = std::llround(static_cast<double>(p.modes) * count_scale);
     const double modes = static_cast<double>(p.modes);
     const double fem_s = estimate_scale * estimate_model(p) + setup_scale * setup_model(p) + solve_scale * solve_model(p, modes);
-    p.task_s = fem_s / group_speedup + transfer_scale * transfer_model(p, modes) / o.ranks_per_task;
+    p.fem_s = fem_s / fem_group_speedup(p.dofs, o.ranks_per_task);
+    p.transfer_s = transfer_scale * transfer_model(p, modes) / o.ranks_per_task;
+    p.task_s = p.fem_s + p.transfer_s;
     p.memory_mb = memory_scale * std::pow(static_cast<double>(p.dofs), kMemoryExponent) / o.ranks_per_task;
     e.task_s.push_back(p.task_s);
     core_s += p.task_s * o.ranks_per_task;
@@ -188,10 +200,10 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
   e.report += fmt::format("  pre-solves:  every entry's f_1, h, dofs and mode count (coarse inertia) in {:.1f} s here\n",
                           presolve_s);
   e.report += fmt::format("  calibration: {} solved here in {:.1f} s: {}; time ~ (coarse dofs^{} + dofs + dofs^{} (1 + modes/{})) "
-                          "/ ranks_per_task^{} + modes x ({:.2g} + (its layouts' work: QR per parity class and Green's "
-                          "functions)^{}) / ranks_per_task, each part scaled by these entries\n",
+                          "/ ranks_per_task^({} ln(dofs/{}), within [0, 1]) + modes x ({:.2g} + (its layouts' work: QR per parity class "
+                          "and Green's functions)^{}) / ranks_per_task, each part scaled by these entries\n",
                           cal.size() == 1 ? "the smallest entry" : fmt::format("the {} smallest entries", cal.size()), cal_s,
-                          cal_text, kEstimateExponent, kDofsExponent, kModesPerFixedShare, kGroupSpeedupExponent,
+                          cal_text, kEstimateExponent, kDofsExponent, kModesPerFixedShare, kGroupSpeedupPerLogDofs, kGroupSpeedupFromDofs,
                           kTransferFixedWork, kTransferWorkExponent);
   e.report += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}: {:.2f} core-hours\n",
                           o.ranks, e.nodes, cores, groups, o.ranks_per_task, core_s / 3600);
@@ -204,8 +216,9 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     const auto& a = spec.samples_m[i];
     e.report += p.failure.empty()
                     ? fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  f_1 {:8.1f} Hz  k {:5.2f}  h {:.4f} m  {:7} dofs  ~{:5} modes  "
-                                  "~{:7.1f} s  (coarse {} dofs, transfer work {:.3g} per mode)\n", tasks[i].name, a[0], a[1], a[2],
-                                  p.f1_hz, p.k, p.h_m, p.dofs, p.modes, p.task_s, p.coarse_dofs, p.transfer_work)
+                                  "~{:7.1f} s = {:.1f} FEM + {:.1f} transfer  (coarse {} dofs, transfer work {:.3g} per mode)\n",
+                                  tasks[i].name, a[0], a[1], a[2], p.f1_hz, p.k, p.h_m, p.dofs, p.modes, p.task_s, p.fem_s,
+                                  p.transfer_s, p.coarse_dofs, p.transfer_work)
                     : fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  will fail: {}\n", tasks[i].name, a[0], a[1], a[2],
                                   p.failure);
   }
