@@ -21,8 +21,9 @@ namespace clatter::jobs {
 namespace {
 
 // The cost model, fitted to the 77 entries of the default bank built on one rank per task and on
-// two (docs/benchmarks.md "The plan's cost model, refitted" and "One rank per task or two"), each
-// stage scaled by what the calibration entries, solved here on one rank, measure:
+// two (docs/benchmarks.md "The plan's cost model, refitted" and "The transfer's queue of modes,
+// one rank per task or two"), each stage scaled by what the calibration entries, solved here on
+// one rank, measure:
 // - the eigen-solve on one rank ~ dofs^1.20 (1 + modes / 16): a fixed share (the slice's end
 //   factorizations and the count check) and one per mode (shifts and solves with the factors);
 // - the pre-solve (one factorization and a few Krylov restarts on the coarse mesh) like its dofs,
@@ -92,8 +93,8 @@ struct EntryPlan {
   double f1_hz = 0, k = 0, h_m = 0;
   double transfer_work = 0;  // per mode (transfer_work above)
   long long dofs = 0, coarse_dofs = 0, modes = 0;
-  double task_s = 0, memory_mb = 0;
-  double fem_s = 0, transfer_s = 0;  // task_s's two parts, on the task's group
+  double fem_s = 0, transfer_s = 0, memory_mb = 0;  // on the task's group
+  double task_s() const { return fem_s + transfer_s; }
   std::string failure;  // the mesh or pre-solve failed: the task will fail the same way
 };
 
@@ -182,10 +183,9 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     const double fem_s = estimate_scale * estimate_model(p) + setup_scale * setup_model(p) + solve_scale * solve_model(p, modes);
     p.fem_s = fem_s / fem_group_speedup(p.dofs, o.ranks_per_task);
     p.transfer_s = transfer_scale * transfer_model(p, modes) / o.ranks_per_task;
-    p.task_s = p.fem_s + p.transfer_s;
     p.memory_mb = memory_scale * std::pow(static_cast<double>(p.dofs), kMemoryExponent) / o.ranks_per_task;
-    e.task_s.push_back(p.task_s);
-    core_s += p.task_s * o.ranks_per_task;
+    e.task_s.push_back(p.task_s());
+    core_s += p.task_s() * o.ranks_per_task;
     worst_memory = std::max(worst_memory, p.memory_mb);
   }
   const int cores = o.cores_per_node > 0 ? o.cores_per_node : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -217,7 +217,7 @@ PlanEstimate modal_plan_estimate(const io::Config& config, const PlanOptions& o)
     e.report += p.failure.empty()
                     ? fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  f_1 {:8.1f} Hz  k {:5.2f}  h {:.4f} m  {:7} dofs  ~{:5} modes  "
                                   "~{:7.1f} s = {:.1f} FEM + {:.1f} transfer  (coarse {} dofs, transfer work {:.3g} per mode)\n",
-                                  tasks[i].name, a[0], a[1], a[2], p.f1_hz, p.k, p.h_m, p.dofs, p.modes, p.task_s, p.fem_s,
+                                  tasks[i].name, a[0], a[1], a[2], p.f1_hz, p.k, p.h_m, p.dofs, p.modes, p.task_s(), p.fem_s,
                                   p.transfer_s, p.coarse_dofs, p.transfer_work)
                     : fmt::format("    {}  ({:.4f}, {:.4f}, {:.4f})  will fail: {}\n", tasks[i].name, a[0], a[1], a[2],
                                   p.failure);
