@@ -32,10 +32,12 @@ inline Me4Sums me4_sums(const float* p, long sx, long sy, int k) {
   return s;
 }
 
-// One z row of the me4 bulk update. Cloned for AVX-512, AVX2 and the baseline: wider vectors
-// divide its 25 loads per cell. Each cell's arithmetic is the same in every clone (no FMA
-// contraction, -ffp-contract=off), so the bits do not depend on the CPU.
-__attribute__((target_clones("avx512f", "avx2", "default")))
+// One z row of the me4 bulk update. Cloned for AVX2 and the baseline: wider vectors divide its 25
+// loads per cell. No AVX-512 clone: the rows start 4 floats apart from a cache line (260-float
+// rows), so nearly every 64-byte load of the 25 splits over two lines, and on Zen 5 the 256-bit
+// clone ran the whole step about 10 % faster (docs/benchmarks.md). Each cell's arithmetic is the
+// same in every clone (no FMA contraction, -ffp-contract=off), so the bits do not depend on the CPU.
+__attribute__((target_clones("avx2", "default")))
 void me4_row(const float* __restrict p, float* __restrict q, long sx, long sy, int nk, Operator::Me4 c) {
 #pragma omp simd
   for (int k = 0; k < nk; ++k) {
@@ -46,7 +48,8 @@ void me4_row(const float* __restrict p, float* __restrict q, long sx, long sy, i
 
 // The blend into the layer on cells [k0, k1) of a row that me4_row has updated:
 // q += theta (srl - me4), theta = max(theta_xy, theta_z[k]); srl - me4 needs p^n alone.
-__attribute__((target_clones("avx512f", "avx2", "default")))
+// AVX2 like me4_row.
+__attribute__((target_clones("avx2", "default")))
 void blend_row(const float* __restrict p, float* __restrict q, long sx, long sy, int k0, int k1,
                const float* __restrict theta_z, float theta_xy, float d0, float d1, float d2, float d3) {
 #pragma omp simd
@@ -100,7 +103,7 @@ void Engine::step(double t_s) {
   fill_z_mirror_ghosts();
   {
     Stage s("interior");
-    update_bulk(op_.inner_box());
+    update_bulk(op_.inner_box(), true);
   }
   {
     Stage s("halo wait");
@@ -110,7 +113,7 @@ void Engine::step(double t_s) {
     Stage s("shell, PML, body");
     fill_mirror_ghosts();
     for (const auto& b : op_.shell_boxes()) update_bulk(b);
-    op_.pml().update(pml_, now_.data(), next_.data());
+    op_.pml().update(pml_, now_.data(), next_.data(), op_.inner_box());
     const float psi = static_cast<float>(pulse(t_s, op_.problem().h_s));
     update_cut_cells(psi);
     if (!op_.point_source().empty()) {
@@ -175,25 +178,26 @@ void Engine::keep_cut_cell_old() {
   for (std::size_t c = 0; c < index.size(); ++c) cut_old_[c] = next_[static_cast<std::size_t>(index[c])];
 }
 
-void Engine::update_bulk(const Box& box) {
+void Engine::update_bulk(const Box& box, bool pml_rows) {
   if (box.empty()) return;
   if (op_.problem().scheme == Scheme::me4)
-    update_bulk_me4(box);
+    update_bulk_me4(box, pml_rows);
   else
-    update_bulk_srl(box);
+    update_bulk_srl(box, pml_rows);
 }
 
-void Engine::update_bulk_srl(const Box& box) {
+void Engine::update_bulk_srl(const Box& box, bool pml_rows) {
   const Layout& layout = op_.layout();
   const int nk = box.hi[2] - box.lo[2];
   for (int i = box.lo[0]; i < box.hi[0]; ++i)
     for (int j = box.lo[1]; j < box.hi[1]; ++j) {
       const long row = layout.at(i, j, box.lo[2]);
       srl_row(now_.data() + row, next_.data() + row, layout.stride[0], layout.stride[1], nk, op_.c1(), op_.lambda2());
+      if (pml_rows) op_.pml().update_z_rows(pml_, now_.data(), next_.data(), i, j, j + 1);
     }
 }
 
-void Engine::update_bulk_me4(const Box& box) {
+void Engine::update_bulk_me4(const Box& box, bool pml_rows) {
   const Layout& layout = op_.layout();
   const long sx = layout.stride[0], sy = layout.stride[1];
   const auto c = op_.me4();
@@ -212,9 +216,12 @@ void Engine::update_bulk_me4(const Box& box) {
   // set (~256 KiB) in cache, so each value of p^n comes from memory about once.
   const long row_bytes = static_cast<long>(nk + 4) * static_cast<long>(sizeof(float));
   const int tile = std::max(4, static_cast<int>((256L * 1024) / (5 * row_bytes)) - 4);
+  // The PML's z layers at both ends of the rows go with them (pml_rows): their 6-cell pieces of
+  // rows, swept alone, would fetch whole lines of p^n from memory a second time.
   for (int j0 = box.lo[1]; j0 < box.hi[1]; j0 += tile)
-    for (int i = box.lo[0]; i < box.hi[0]; ++i)
-      for (int j = j0; j < std::min(j0 + tile, box.hi[1]); ++j) {
+    for (int i = box.lo[0]; i < box.hi[0]; ++i) {
+      const int j1 = std::min(j0 + tile, box.hi[1]);
+      for (int j = j0; j < j1; ++j) {
         const long row = layout.at(i, j, box.lo[2]);
         me4_row(now_.data() + row, next_.data() + row, sx, sy, nk, c);
         const float blend_xy = std::max(blend[0][static_cast<std::size_t>(i)], blend[1][static_cast<std::size_t>(j)]);
@@ -224,7 +231,9 @@ void Engine::update_bulk_me4(const Box& box) {
           for (const auto& [k0, k1] : z_runs)
             blend_row(now_.data() + row, next_.data() + row, sx, sy, k0, k1, blend_z, 0.0f, d0, d1, d2, d3);
         }
+        if (pml_rows) op_.pml().update_z_rows(pml_, now_.data(), next_.data(), i, j, j + 1);
       }
+    }
 }
 
 void Engine::update_cut_cells(float psi) {

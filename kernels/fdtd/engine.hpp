@@ -31,16 +31,17 @@ class Engine {
   void fill_z_mirror_ghosts();
   void fill_mirror_ghosts();
   void keep_cut_cell_old();
-  void update_bulk(const Box& box);
-  void update_bulk_srl(const Box& box);
-  void update_bulk_me4(const Box& box);
+  // With pml_rows, also the rows of the PML's z layers within the box's x-y extent (Pml::update_z_rows).
+  void update_bulk(const Box& box, bool pml_rows = false);
+  void update_bulk_srl(const Box& box, bool pml_rows);
+  void update_bulk_me4(const Box& box, bool pml_rows);
   void update_cut_cells(float psi);
   void add_point_source(float psi, float psi_smooth);
 
   const Operator& op_;
   HaloExchange& halo_;
   int field_ = 0;
-  std::vector<float> now_, next_;  // p^n and (p^{n-1} -> p^{n+1})
+  HugeVector now_, next_;  // p^n and (p^{n-1} -> p^{n+1}), on huge pages where the system has them
   PmlState pml_;
   std::vector<float> cut_body_;  // the started field's column of the operator's body_all
   std::vector<float> cut_old_;   // p^{n-1} of the cut cells, kept before the bulk overwrites it

@@ -2,9 +2,30 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <type_traits>
 
+#if defined(__has_include)
+#if __has_include(<sys/mman.h>)
+#include <sys/mman.h>
+#endif
+#endif
+
 namespace clatter::kernels::fdtd {
+
+void* allocate_huge(std::size_t bytes) {
+  constexpr std::size_t huge = std::size_t{2} << 20, line = 64;
+  const std::size_t align = bytes >= huge ? huge : line;
+  const std::size_t size = (std::max<std::size_t>(bytes, 1) + align - 1) / align * align;
+  void* p = std::aligned_alloc(align, size);
+  if (p == nullptr) throw std::bad_alloc();
+#if defined(MADV_HUGEPAGE)
+  if (align == huge) (void)madvise(p, size, MADV_HUGEPAGE);  // advice only: ignored where unsupported
+#endif
+  return p;
+}
+
+void free_huge(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 // Depth (in cells) of a position, in cell units from the grid's low edge, into the absorbing layer.
@@ -58,6 +79,9 @@ Pml::Pml(const Problem& problem, const Layout& layout)
         r.box = bx.intersect(by).intersect(bz).intersect(layout.owned);
         if (r.box.empty()) continue;
         r.damped = damped;
+        r.z_rows = damped == 4 && (r.box.lo[2] == 0 || r.box.lo[2] - 1 >= layout.owned.lo[2]) &&
+                   (r.box.hi[2] == g.n[2] || r.box.hi[2] < layout.owned.hi[2]);
+        if (r.z_rows) z_rows_.push_back(regions_.size());
         const auto n = std::array<int, 3>{r.box.hi[0] - r.box.lo[0], r.box.hi[1] - r.box.lo[1], r.box.hi[2] - r.box.lo[2]};
         for (int a = 0; a < 3; ++a) {
           if (!(damped & (1 << a))) continue;
@@ -106,7 +130,7 @@ std::size_t Pml::bytes() const {
   return b;
 }
 
-void Pml::update(PmlState& state, const float* p_now, float* p_next) const {
+void Pml::update(PmlState& state, const float* p_now, float* p_next, const Box& swept) const {
   for (std::size_t i = 0; i < regions_.size(); ++i) {
     const Region& r = regions_[i];
     PmlState::Region& s = state.regions[i];
@@ -114,7 +138,19 @@ void Pml::update(PmlState& state, const float* p_now, float* p_next) const {
       case 1: update_region<1>(r, s, p_now, p_next); break;
       case 2: update_region<2>(r, s, p_now, p_next); break;
       case 3: update_region<3>(r, s, p_now, p_next); break;
-      case 4: update_region<4>(r, s, p_now, p_next); break;
+      case 4: {
+        const Box& b = r.box;
+        for (int ci = 0; ci < b.hi[0] - b.lo[0]; ++ci) {
+          const int gi = b.lo[0] + ci;
+          const bool in_x = r.z_rows && gi >= swept.lo[0] && gi < swept.hi[0];
+          for (int cj = 0; cj < b.hi[1] - b.lo[1]; ++cj) {
+            const int gj = b.lo[1] + cj;
+            if (in_x && gj >= swept.lo[1] && gj < swept.hi[1]) continue;  // done by update_z_rows
+            update_z_row(r, s, ci, cj, p_now, p_next);
+          }
+        }
+        break;
+      }
       case 5: update_region<5>(r, s, p_now, p_next); break;
       case 6: update_region<6>(r, s, p_now, p_next); break;
       default: update_region<7>(r, s, p_now, p_next); break;
@@ -123,10 +159,74 @@ void Pml::update(PmlState& state, const float* p_now, float* p_next) const {
   }
 }
 
+void Pml::update_z_rows(PmlState& state, const float* p_now, float* p_next, int i, int j0, int j1) const {
+  for (const std::size_t x : z_rows_) {
+    const Region& r = regions_[x];
+    if (i < r.box.lo[0] || i >= r.box.hi[0]) continue;
+    const int lo = std::max(j0, r.box.lo[1]), hi = std::min(j1, r.box.hi[1]);
+    for (int j = lo; j < hi; ++j) update_z_row(r, state.regions[x], i - r.box.lo[0], j - r.box.lo[1], p_now, p_next);
+  }
+}
+
+namespace {
+
+// One row of a region damped along z alone: its z faces (k0..k1) from the gradient of p^n, then
+// its nk cells, with the arithmetic of update_faces<2> and update_pressure<4>. Inlined with nk = 6
+// (the usual layer) as a constant, so the row is a few masked vectors.
+[[gnu::always_inline]] inline void z_row(const float* __restrict p, float* __restrict q, float* __restrict v,
+                                         const float* __restrict nz, float* __restrict oz, const float* __restrict fd,
+                                         const float* __restrict fg, const float* __restrict zdec,
+                                         const float* __restrict zgain, long sx, long sy, float l2, int k0, int k1,
+                                         int nk) {
+#pragma omp simd
+  for (int k = k0; k < k1; ++k) v[k] = fd[k] * v[k] - fg[k] * (p[k] - p[k - 1]);
+  const float* __restrict pxm = p - sx;
+  const float* __restrict pxp = p + sx;
+  const float* __restrict pym = p - sy;
+  const float* __restrict pyp = p + sy;
+  const float centre = 4.0f;  // 2 x the two undamped axes
+#pragma omp simd
+  for (int k = 0; k < nk; ++k) {
+    float split = 0.0f, pairs = 0.0f;
+    pairs += pxm[k] + pxp[k];
+    pairs += pym[k] + pyp[k];
+    const float next = zdec[k] * nz[k] - zgain[k] * (v[k + 1] - v[k]);
+    split += (next - 2.0f * nz[k]) + oz[k];
+    oz[k] = next;
+    q[k] = (2.0f * p[k] - q[k]) + l2 * (pairs - centre * p[k]) + split;
+  }
+}
+
+}  // namespace
+
+void Pml::update_z_row(const Region& r, PmlState::Region& s, int ci, int cj, const float* p_now, float* p_next) const {
+  const Box& b = r.box;
+  const int n1 = b.hi[1] - b.lo[1], nk = b.hi[2] - b.lo[2];
+  const long cell = layout_.at(b.lo[0] + ci, b.lo[1] + cj, b.lo[2]);
+  const long local = (long(ci) * n1 + cj) * nk;
+  float* v = s.v[2].data() + ci * r.face_stride[2][0] + cj * r.face_stride[2][1];
+  const float* nz = s.split_now[2].data() + local;
+  float* oz = s.split_old[2].data() + local;
+  const float* fd = face_decay_[2].data() + b.lo[2];
+  const float* fg = face_gain_[2].data() + b.lo[2];
+  const float* zdec = cell_decay_[2].data() + b.lo[2];
+  const float* zgain = cell_gain_[2].data() + b.lo[2];
+  const int k0 = b.lo[2] == 0 ? 1 : 0, k1 = b.hi[2] == grid_.n[2] ? nk : nk + 1;
+  const long sx = layout_.stride[0], sy = layout_.stride[1];
+  if (nk == 6 && k0 == 0 && k1 == 7)
+    z_row(p_now + cell, p_next + cell, v, nz, oz, fd, fg, zdec, zgain, sx, sy, lambda2_, 0, 7, 6);
+  else if (nk == 6 && k0 == 1 && k1 == 7)
+    z_row(p_now + cell, p_next + cell, v, nz, oz, fd, fg, zdec, zgain, sx, sy, lambda2_, 1, 7, 6);
+  else if (nk == 6 && k0 == 0 && k1 == 6)
+    z_row(p_now + cell, p_next + cell, v, nz, oz, fd, fg, zdec, zgain, sx, sy, lambda2_, 0, 6, 6);
+  else
+    z_row(p_now + cell, p_next + cell, v, nz, oz, fd, fg, zdec, zgain, sx, sy, lambda2_, k0, k1, nk);
+}
+
 // Face velocities of damped axis `a` from the pressure gradient at t_n. Faces on the grid's outer
 // boundary stay 0 (a rigid wall behind the layer) and are never updated.
 template <int a>
-void Pml::update_faces(const Region& r, PmlState::Region& s, const float* p_now) const {
+void Pml::update_faces(const Region& r, PmlState::Region& s, const float* p_now, int fi0, int fi1) const {
   const Box& b = r.box;
   const auto& st = layout_.stride;
   const std::array<int, 3> n{b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]};
@@ -134,7 +234,7 @@ void Pml::update_faces(const Region& r, PmlState::Region& s, const float* p_now)
   const float* fd = face_decay_[a].data();
   const float* fg = face_gain_[a].data();
   float* v = s.v[a].data();
-  for (int fi = 0; fi < n[0] + (a == 0); ++fi) {
+  for (int fi = fi0; fi < fi1; ++fi) {
     const int gi = b.lo[0] + fi;
     if (a == 0 && (gi == 0 || gi == grid_.n[0])) continue;
     for (int fj = 0; fj < n[1] + (a == 1); ++fj) {
@@ -185,15 +285,14 @@ Pml::SplitRow Pml::split_row(const Region& r, PmlState::Region& s, int ci, int c
 
 // Pressure of one region: damped split parts explicitly, undamped parts through the leapfrog Laplacian.
 template <int D>
-void Pml::update_pressure(const Region& r, PmlState::Region& s, const float* p_now, float* p_next) const {
+void Pml::update_pressure(const Region& r, PmlState::Region& s, const float* p_now, float* p_next, int ci) const {
   const Box& b = r.box;
   const auto& st = layout_.stride;
   const std::array<int, 3> n{b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]};
   constexpr int undamped = 3 - ((D & 1) != 0) - ((D & 2) != 0) - ((D & 4) != 0);
   const float l2 = lambda2_, centre = 2.0f * static_cast<float>(undamped);
   const long sx = st[0], sy = st[1];
-  for (int ci = 0; ci < n[0]; ++ci)
-    for (int cj = 0; cj < n[1]; ++cj) {
+  for (int cj = 0; cj < n[1]; ++cj) {
       const long cell = layout_.at(b.lo[0] + ci, b.lo[1] + cj, b.lo[2]);
       const float* __restrict p = p_now + cell;
       float* __restrict q = p_next + cell;
@@ -256,12 +355,18 @@ void Pml::update_pressure(const Region& r, PmlState::Region& s, const float* p_n
     }
 }
 
+// Plane by plane (x): the faces a plane's cells read, then its cells, while that plane's p^n is
+// still in cache. Faces depend on p^n alone, so the order does not change a bit.
 template <int D>
 void Pml::update_region(const Region& r, PmlState::Region& s, const float* p_now, float* p_next) const {
-  if constexpr ((D & 1) != 0) update_faces<0>(r, s, p_now);
-  if constexpr ((D & 2) != 0) update_faces<1>(r, s, p_now);
-  if constexpr ((D & 4) != 0) update_faces<2>(r, s, p_now);
-  update_pressure<D>(r, s, p_now, p_next);
+  const int n0 = r.box.hi[0] - r.box.lo[0];
+  if constexpr ((D & 1) != 0) update_faces<0>(r, s, p_now, 0, 1);
+  for (int ci = 0; ci < n0; ++ci) {
+    if constexpr ((D & 1) != 0) update_faces<0>(r, s, p_now, ci + 1, ci + 2);
+    if constexpr ((D & 2) != 0) update_faces<1>(r, s, p_now, ci, ci + 1);
+    if constexpr ((D & 4) != 0) update_faces<2>(r, s, p_now, ci, ci + 1);
+    update_pressure<D>(r, s, p_now, p_next, ci);
+  }
 }
 
 }  // namespace clatter::kernels::fdtd
