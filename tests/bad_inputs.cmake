@@ -20,7 +20,7 @@ clatter_error_test(bad_config_outside_section 0 "outside_section.toml:2;unknown 
 clatter_error_test(bad_config_unknown_section 0 "unknown_section.toml:3;unknown key 'gird.n_cells';did you mean 'grid.n_cells'"
                    field -c ${bad}/unknown_section.toml -o out.h5)
 clatter_error_test(bad_config_nan 0 "nan_value.toml:3;'grid.dx_m' = nan;must be in (0, 10]" field -c ${bad}/nan_value.toml -o out.h5)
-clatter_error_test(bad_config_choice 0 "bad_choice.toml:3;'object.kind' = \"cube\";must be one of ellipsoid, monopole"
+clatter_error_test(bad_config_choice 0 "bad_choice.toml:3;'object.kind' = \"cube\";must be one of ellipsoid, mesh, monopole"
                    solve -c ${bad}/bad_choice.toml -o out.h5)
 clatter_error_test(bad_config_tuple 0 "--set 'proxies.list_m=[0.5, 0.3]';expected an array of 2-element arrays, e.g. [[1.0, 0.0], [0.0, 1.0]]"
                    pan "--set=proxies.list_m=[0.5, 0.3]" -o out.h5)
@@ -36,6 +36,11 @@ clatter_error_test(bad_pan_too_few_radii 0 "'fit.radii_m' has 1 radii;at least f
 clatter_error_test(bad_pan_cfl_np2 2 "'time.dt_s' = 0.0001;CFL limit" pan --set grid.dx_m=0.01 --set time.dt_s=1e-4 -o out.h5)
 clatter_error_test(bad_solve_scheme 0 "--set 'solver.scheme=iwb';'solver.scheme' = 'iwb';must be one of me4, srl"
                    solve --set solver.scheme=iwb -o out.h5)
+# a body given as a mesh: the file must be there, and octant mode needs its mirror symmetry
+clatter_error_test(bad_solve_mesh_missing 0 "'object.mesh' = \"nowhere.obj\";cannot open the mesh file"
+                   solve --set object.kind=mesh --set object.mesh=nowhere.obj -o out.h5)
+clatter_error_test(bad_solve_mesh_octant_asymmetric 0 "'grid.octant' = true;tetrahedron.obj;not mirror-symmetric;grid.octant = false"
+                   solve --set object.kind=mesh --set object.mesh=${bad}/tetrahedron.obj -o out.h5)
 clatter_error_test(bad_solve_listener_in_blend 0 "'listeners.points_m' point 1 = [0.97, 0, 0];within 8 cells of the absorbing layer;grow grid.half_width_m"
                    solve "--set=listeners.points_m=[[0.97, 0, 0]]" -o out.h5)
 

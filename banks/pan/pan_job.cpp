@@ -59,16 +59,43 @@ model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results
   return bank;
 }
 
+namespace {
+
+// The far field on the fit's frame: coefficient sample n is at the retarded time
+// tau = t_first + (n - lead - delay) dt, t_first the solve's first sample (fit.hpp, pan_spec.hpp).
+std::vector<double> aligned_far_field(const PanSpec& spec, const kernels::fdtd::KirchhoffSeries& far, int delay_steps) {
+  const double dt = spec.solve.problem.dt_s, t_first = -spec.solve.i_time_zero * dt;
+  const long offset = std::lround((t_first - far.t_first_s) / dt) - spec.lead_steps - delay_steps;
+  std::vector<double> out(spec.length, 0.0);
+  for (std::size_t n = 0; n < out.size(); ++n) {
+    const long k = static_cast<long>(n) + offset;
+    if (k >= 0 && k < far.valid_end) out[n] = far.value[static_cast<std::size_t>(k)];
+  }
+  return out;
+}
+
+}  // namespace
+
 ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                         const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s) {
   SolveSpec s = spec.solve;
   s.problem.body = {spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1]};
-  // make_pan_spec checked the fitted listeners against the bounding sphere; the extra ones are new.
+  // make_pan_spec checked the fitted listeners; the extra ones are new. With the far field they are
+  // heard through the Kirchhoff surface, anywhere outside it; without it, on the grid.
   auto probe = s.problem;
   probe.field = 1;
   for (std::size_t l = 0; l < extra_listeners_m.size(); ++l) {
-    s.listeners_m.push_back(extra_listeners_m[l]);
-    if (auto why = kernels::fdtd::listener_problem(probe, extra_listeners_m[l]))
+    const auto& x = extra_listeners_m[l];
+    if (spec.far_field) {
+      const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+      if (r <= s.kirchhoff_radius_m + 2 * s.problem.grid.dx_m)
+        throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {} m from the centre, inside the "
+                                     "Kirchhoff surface", l + 1, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1], r));
+      s.surface_listeners_m.push_back(x);
+      continue;
+    }
+    s.listeners_m.push_back(x);
+    if (auto why = kernels::fdtd::listener_problem(probe, x))
       throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {}", l + 1,
                                    spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1], *why));
   }
@@ -87,12 +114,27 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   const std::size_t n_fitted = directions.size() * m;
   for (std::size_t f = 0; f < s.fields.size(); ++f) {
     auto& dirs = out.proxy.fields[static_cast<std::size_t>(s.fields[f] - 1)];
+    if (!spec.far_field) {
+      for (std::size_t d = 0; d < directions.size(); ++d) {
+        std::vector<const float*> series;
+        for (std::size_t i = 0; i < m; ++i) series.push_back(raw.series[f].data() + (d * m + i) * ns);
+        dirs.push_back(fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d]));
+      }
+      out.extra_series.emplace_back(raw.series[f].begin() + static_cast<std::ptrdiff_t>(n_fitted * ns), raw.series[f].end());
+      continue;
+    }
+    // Every series through the surface, on the solve's own samples.
+    const auto& heard = raw.surface_series[f];
+    std::vector<float> near(heard.size() * ns);
+    for (std::size_t l = 0; l < heard.size(); ++l)
+      for (std::size_t k = 0; k < ns; ++k) near[l * ns + k] = static_cast<float>(heard[l].value[k]);
     for (std::size_t d = 0; d < directions.size(); ++d) {
       std::vector<const float*> series;
-      for (std::size_t i = 0; i < m; ++i) series.push_back(raw.series[f].data() + (d * m + i) * ns);
-      dirs.push_back(fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d]));
+      for (std::size_t i = 0; i < m; ++i) series.push_back(near.data() + (d * m + i) * ns);
+      const auto far = aligned_far_field(spec, raw.far[f][d], out.proxy.delay_steps[d]);
+      dirs.push_back(fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d], &far));
     }
-    out.extra_series.emplace_back(raw.series[f].begin() + static_cast<std::ptrdiff_t>(n_fitted * ns), raw.series[f].end());
+    out.extra_series.emplace_back(near.begin() + static_cast<std::ptrdiff_t>(n_fitted * ns), near.end());
   }
   return out;
 }

@@ -37,7 +37,11 @@ const io::Schema& pan_schema() {
         {"solve.fields", io::RealList{1, 2, 3, 4, 5, 6}, "rigid-body fields to solve and store", {1, 6}},
         {"fit.radii_m", io::RealList{0.7, 0.85, 1.0, 1.2, 1.5},
          "the M listening radii [m], outside the bounding sphere; rounded to whole steps of c dt", {0.0, 1e4, true}},
-        {"fit.terms", std::int64_t{2}, "N, terms of the 1/R^k series (8)", {1, 8}},
+        {"fit.terms", std::int64_t{2}, "N, terms of the 1/R^k series (8); with fit.far_field, q_1 is the far field and "
+                                       "q_2 .. q_N are fitted (3 there: docs/pan.md)", {1, 8}},
+        {"fit.far_field", false, "hear every listener through a Kirchhoff surface around the body (the grid then holds "
+                                 "only the body) and take q_1 as the far field itself (docs/pan.md, \"The far field\"); "
+                                 "false: listeners on the grid and every term fitted over the radii (the paper)"},
         {"fit.divisions", std::int64_t{8}, "octant edges cut in d (even): (d+1)(d+2)/2 directions, d^2 triangles; 8: "
                                            "the paper's 45 and 64", {2, 64}},
         {"fit.epsilon", 0.01, "keep wavelet coefficient j iff some |p^_i^j| >= epsilon ||p^_i||_inf", {0.0, 1.0}},
@@ -70,6 +74,7 @@ PanParams parse_pan_params(const io::Config& config) {
   p.solve_fields = config.reals("solve.fields");
   p.fit_radii_m = config.reals("fit.radii_m");
   p.fit_terms = static_cast<int>(config.integer("fit.terms"));
+  p.fit_far_field = config.boolean("fit.far_field");
   p.fit_divisions = static_cast<int>(config.integer("fit.divisions"));
   p.fit_epsilon = config.real("fit.epsilon");
   p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
@@ -100,6 +105,10 @@ std::vector<std::array<double, 2>> proxy_list(const PanParams& in) {
   return out;
 }
 
+// The Kirchhoff surface: a staircase ball three cells off the bounding sphere, so that the cells
+// across its faces are fluid (kernels/fdtd/kirchhoff.hpp).
+double kirchhoff_radius_m(const PanSpec& spec, double dx_m) { return spec.a_m + 3 * dx_m; }
+
 // One proxy's solve: octant mode (the bank stores the positive octant; eqs. 16-21 give the rest),
 // a sphere of radius A (build_proxy sets the body per proxy), listeners at every direction x radius.
 SolveParams proxy_solve_params(const PanParams& in, const PanSpec& spec) {
@@ -112,7 +121,8 @@ SolveParams proxy_solve_params(const PanParams& in, const PanSpec& spec) {
   // Room for the listeners' tricubic stencils (2 cells) and, for me4, the blend into the layer (an
   // unknown scheme is make_solve_spec's error).
   const auto scheme = kernels::fdtd::scheme_from_name(in.solver_scheme).value_or(kernels::fdtd::Scheme::srl);
-  s.grid_half_width_m = r_max + (3 + kernels::fdtd::blend_cells(scheme, in.grid_pml_cells)) * in.grid_dx_m;
+  const int margin_cells = 3 + kernels::fdtd::blend_cells(scheme, in.grid_pml_cells);
+  s.grid_half_width_m = r_max + margin_cells * in.grid_dx_m;
   s.grid_pml_cells = in.grid_pml_cells;
   s.grid_octant = true;
   s.time_dt_s = in.time_dt_s;
@@ -123,6 +133,14 @@ SolveParams proxy_solve_params(const PanParams& in, const PanSpec& spec) {
   s.solver_max_dispersion_error = in.solver_max_dispersion_error;
   s.solve_fields = in.solve_fields;
   s.listeners_points_m.clear();
+  if (spec.far_field) {
+    // Every listener is heard through the Kirchhoff surface (build_proxy): the grid need only hold
+    // the surface, and one listener just outside it keeps the error budget and health check.
+    const double rs = kirchhoff_radius_m(spec, in.grid_dx_m);
+    s.grid_half_width_m = rs + (margin_cells + 2) * in.grid_dx_m;
+    s.listeners_points_m.push_back({rs + 2 * in.grid_dx_m, 0.0, 0.0});
+    return s;
+  }
   for (const auto& d : pan::direction_vertices(spec.divisions))
     for (double r : spec.radii_m) s.listeners_points_m.push_back({r * d[0], r * d[1], r * d[2]});
   return s;
@@ -158,7 +176,20 @@ PanSpec make_pan_spec(const PanParams& in) {
   if (static_cast<int>(spec.radii_m.size()) < spec.terms)
     throw InputError(fmt::format("config: key 'fit.radii_m' has {} radii: need at least fit.terms = {}",
                                  spec.radii_m.size(), spec.terms));
+  spec.far_field = in.fit_far_field;
+  if (spec.far_field)
+    for (double r : spec.radii_m)  // points of (K) must lie outside the surface (kirchhoff.hpp)
+      if (r <= kirchhoff_radius_m(spec, dx) + 2 * dx)
+        throw InputError(fmt::format("config: key 'fit.radii_m' has {}: with fit.far_field = true it must lie outside "
+                                     "the Kirchhoff surface at A + 3 cells + 2 cells = {} m",
+                                     r, kirchhoff_radius_m(spec, dx) + 2 * dx));
   spec.solve = make_solve_spec(proxy_solve_params(in, spec));  // CFL, domain and listener checks
+  if (spec.far_field) {
+    spec.solve.kirchhoff_radius_m = kirchhoff_radius_m(spec, dx);
+    spec.solve.far_directions = pan::direction_vertices(spec.divisions);
+    for (const auto& d : spec.solve.far_directions)
+      for (double r : spec.radii_m) spec.solve.surface_listeners_m.push_back({r * d[0], r * d[1], r * d[2]});
+  }
   spec.lead_steps = static_cast<int>(std::ceil(spec.a_m / (c_m_s * dt)));
   const int k_min = *std::min_element(spec.shift_steps.begin(), spec.shift_steps.end()) - spec.lead_steps;
   spec.length = static_cast<std::uint32_t>(pan::next_power_of_two(static_cast<std::size_t>(spec.solve.n_samples - k_min)));

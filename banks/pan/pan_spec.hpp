@@ -26,6 +26,9 @@ struct PanSpec {
   // anything before t - R/c = -2h - A/c. Each series is shifted by shift_steps[i] - lead_steps.
   int lead_steps = 0;
   int terms = 2;
+  // q_1 from the far field of a Kirchhoff box around the body (kernels/fdtd/kirchhoff.hpp), the
+  // other terms fitted to the rest; false: all terms fitted over the radii (the paper's fit).
+  bool far_field = false;
   int divisions = 8;                   // octant triangulation: 8 -> 45 directions (the paper's)
   double epsilon = 0.01;
   std::uint32_t length = 0;            // wavelet length T
@@ -44,6 +47,7 @@ struct PanParams {
   std::vector<double> solve_fields;
   std::vector<double> fit_radii_m;
   int fit_terms = 0, fit_divisions = 0;
+  bool fit_far_field = false;
   double fit_epsilon = 0;
   int solver_cut_cell_samples = 0;
   std::string solver_scheme = "me4";

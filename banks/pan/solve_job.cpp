@@ -54,14 +54,13 @@ class Progress {
 
 // Every rank of the solve agrees every kHealthCheckSteps steps (one small allreduce, far below a
 // step's cost) on whether to go on: a SIGTERM/SIGINT stops the solve (Interrupted), and a
-// non-finite pressure at any listener means the scheme blew up (TaskFailure), so nobody runs on
+// non-finite pressure at any listener (or on the Kirchhoff surface) means the scheme blew up (TaskFailure), so nobody runs on
 // to the end of a worthless solve.
 constexpr int kHealthCheckSteps = 64;
 
-void check_health(MPI_Comm comm, const fdtd::Recorder& recorder, int n, int field) {
+void check_health(MPI_Comm comm, bool finite, int n, int field) {
   // Both flags in one reduction: this runs inside the time loop.
-  const std::array<int, 2> any =
-      mpi::all_reduce_max(comm, std::array<int, 2>{interrupt_requested() ? 1 : 0, recorder.finite_at(n) ? 0 : 1});
+  const std::array<int, 2> any = mpi::all_reduce_max(comm, std::array<int, 2>{interrupt_requested() ? 1 : 0, finite ? 0 : 1});
   if (any[1])
     throw TaskFailure(fmt::format("field {}: the pressure at a listener is not finite at step {} (unstable: "
                                   "check time.dt_s against the CFL limit and the geometry)", field, n));
@@ -86,34 +85,61 @@ std::unique_ptr<fdtd::Operator> build_operator(MPI_Comm comm, const SolveSpec& s
   return op;
 }
 
-// One field: start, step with the health check and progress, gather the corners to rank 0.
-// Returns the series [listener][sample] on rank 0, nothing elsewhere.
-std::vector<float> solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fdtd::Engine& engine,
-                               Progress& progress) {
+// What one field's solve gives rank 0.
+struct FieldRecord {
+  std::vector<float> series;                       // [listener][sample]
+  std::vector<fdtd::KirchhoffSeries> far, near;  // per far direction, per surface listener
+};
+
+// One field: start, step with the health check and progress, gather the corners (and the
+// Kirchhoff surface) to rank 0. Returns the record on rank 0, nothing elsewhere.
+FieldRecord solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fdtd::Engine& engine,
+                        Progress& progress) {
   fdtd::Problem problem = spec.problem;
   problem.field = spec.fields[fi];
   const int steps = spec.n_samples - 1;
   std::optional<fdtd::Recorder> recorder;
+  std::optional<fdtd::SurfaceRecorder> surface;
   {
     Stage stage("start");
     engine.start(problem.field);
     recorder.emplace(problem, spec.listeners_m, engine.layout(), spec.n_samples);
+    if (spec.kirchhoff_radius_m > 0) surface.emplace(problem, spec.kirchhoff_radius_m, engine.layout(), spec.n_samples);
   }
   {
     Stage loop("time loop");
     for (int n = 0;; ++n) {
       recorder->record(n, engine.pressure());
-      if (n % kHealthCheckSteps == 0 || n == steps) check_health(comm, *recorder, n, problem.field);
+      if (surface) surface->record(n, engine.pressure());
+      if (n % kHealthCheckSteps == 0 || n == steps)
+        check_health(comm, recorder->finite_at(n) && (!surface || surface->finite_at(n)), n, problem.field);
       if (n == steps) break;
       engine.step((n - spec.i_time_zero) * problem.dt_s);
       progress.step(static_cast<long long>(fi) * steps + n + 1, static_cast<int>(fi) + 1,
                     static_cast<int>(spec.fields.size()));
     }
   }
-  Stage stage("gather");
-  const auto all = mpi::gather(comm, recorder->pack());
-  if (mpi::rank(comm) != 0) return {};
-  return fdtd::interpolate_listeners(recorder->stencils(), spec.n_samples, all);
+  FieldRecord out;
+  {
+    Stage stage("gather");
+    const auto all = mpi::gather(comm, recorder->pack());
+    if (mpi::rank(comm) == 0) out.series = fdtd::interpolate_listeners(recorder->stencils(), spec.n_samples, all);
+  }
+  if (!surface) return out;
+  std::vector<std::string> packs;
+  {
+    Stage stage("gather");
+    packs = mpi::gather(comm, surface->pack());
+    surface.reset();
+  }
+  if (mpi::rank(comm) != 0) return out;
+  Stage stage("Kirchhoff surface");
+  const fdtd::SurfaceField surface_field =
+      fdtd::assemble_surface(problem, spec.kirchhoff_radius_m, spec.n_samples, -spec.i_time_zero * problem.dt_s, packs);
+  packs.clear();
+  for (const auto& d : spec.far_directions) out.far.push_back(fdtd::far_field(surface_field, d));
+  for (const auto& x : spec.surface_listeners_m) out.near.push_back(fdtd::pressure_at(surface_field, x));
+  return out;
 }
 
 }  // namespace
@@ -133,6 +159,12 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
                mpi::size(comm), topo->dims()[0], topo->dims()[1], topo->dims()[2], steps, spec.problem.dt_s * 1e6,
                spec.problem.courant(), spec.fields.size());
 
+  if (const auto& m = spec.problem.mesh)
+    spdlog::info("solve: mesh {} ({} triangles, hash {}, scale {}): centre of mass at [{:.6g}, {:.6g}, {:.6g}] m moved to "
+                 "the origin, bounding radius {:.4g} m, volume {:.4g} m^3, {}mirror-symmetric",
+                 spec.mesh_path, m->triangles().size(), spec.mesh_hash, spec.mesh_scale, m->centre_of_mass_offset_m()[0],
+                 m->centre_of_mass_offset_m()[1], m->centre_of_mass_offset_m()[2], m->bounding_radius_m(), m->volume_m3(),
+                 m->mirror_symmetric() ? "" : "not ");
   const double cells_per_wavelength = spec.problem.c_m_s / (spec.band_edge_hz * grid.dx_m);
   spdlog::info("solve: scheme {}, {:.3g} cells per shortest wavelength (psi's band edge {:.3g} kHz); predicted "
                "dispersion error {:.2g} % over {:.3g} m to the farthest listener (bound {:.2g} %)",
@@ -153,8 +185,12 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
   const auto op = build_operator(comm, spec, owned, result);
   fdtd::Engine engine(*op, halo);
   for (std::size_t fi = 0; fi < spec.fields.size(); ++fi) {
-    auto series = solve_field(comm, spec, fi, engine, progress);
-    if (mpi::rank(comm) == 0) result.series.push_back(std::move(series));
+    auto record = solve_field(comm, spec, fi, engine, progress);
+    if (mpi::rank(comm) == 0) {
+      result.series.push_back(std::move(record.series));
+      result.far.push_back(std::move(record.far));
+      result.surface_series.push_back(std::move(record.near));
+    }
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   const double updates = static_cast<double>(cells) * steps * static_cast<double>(spec.fields.size());
@@ -181,22 +217,43 @@ void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult
   io::write_attribute(file, g, "time_origin", std::string_view("t = 0 at the centre of psi(t; h); sample k is at "
                                                                "t_first_s + k dt_s"));
   io::write_attribute(file, g, "object", config.string("object.kind"));
-  io::write_attribute<double>(file, g, "a_m", p.body.a_m);
-  io::write_attribute<double>(file, g, "b_m", p.body.b_m);
-  io::write_attribute<double>(file, g, "c_m", p.body.c_m);
+  if (p.mesh) {
+    // The mesh by content (io::mesh_hash of the file's mesh), its scale, and where its centre of
+    // mass was in the file's frame (scaled): the solve's origin, about which rotations turn.
+    io::write_attribute(file, g, "mesh_hash", std::string_view(spec.mesh_hash));
+    io::write_attribute(file, g, "mesh_file", std::string_view(spec.mesh_path));
+    io::write_attribute<double>(file, g, "mesh_scale", spec.mesh_scale);
+    const auto& o = p.mesh->centre_of_mass_offset_m();
+    io::write_attribute<double>(file, g, "centre_of_mass_x_m", o[0]);
+    io::write_attribute<double>(file, g, "centre_of_mass_y_m", o[1]);
+    io::write_attribute<double>(file, g, "centre_of_mass_z_m", o[2]);
+    io::write_attribute<double>(file, g, "bounding_radius_m", p.mesh->bounding_radius_m());
+  } else {
+    io::write_attribute<double>(file, g, "a_m", p.body.a_m);
+    io::write_attribute<double>(file, g, "b_m", p.body.b_m);
+    io::write_attribute<double>(file, g, "c_m", p.body.c_m);
+  }
   io::write_attribute<std::int32_t>(file, g, "octant", p.grid.octant ? 1 : 0);
   io::write_attribute<std::int32_t>(file, g, "grid_cells", p.grid.n[0]);
   io::write_attribute<std::int32_t>(file, g, "pml_cells", p.grid.pml);
   io::write_attribute(file, g, "interpolation", std::string_view("tricubic Lagrange (fourth order)"));
   io::write_attribute(file, g, "scheme", std::string_view(fdtd::scheme_name(p.scheme)));
-  const hsize_t np = spec.listeners_m.size(), ns = static_cast<hsize_t>(spec.n_samples);
+  // The grid's listeners, then those heard through the Kirchhoff surface.
+  const std::size_t n_grid = spec.listeners_m.size();
+  const hsize_t np = n_grid + spec.surface_listeners_m.size(), ns = static_cast<hsize_t>(spec.n_samples);
   std::vector<double> xyz;
   for (const auto& x : spec.listeners_m) xyz.insert(xyz.end(), x.begin(), x.end());
+  for (const auto& x : spec.surface_listeners_m) xyz.insert(xyz.end(), x.begin(), x.end());
   io::write_dataset<double>(file, "/listeners/x_m", xyz, {np, 3}, "m");
+  io::write_attribute<std::int32_t>(file, "/listeners", "grid_listeners", static_cast<std::int32_t>(n_grid));
+  io::write_attribute<double>(file, "/listeners", "kirchhoff_radius_m", spec.kirchhoff_radius_m);
   for (std::size_t f = 0; f < spec.fields.size(); ++f) {
     const int field = spec.fields[f];
     const char* units = field == 0 ? "Pa/(m^3/s^2)" : field <= 3 ? "Pa/(m/s^2)" : "Pa/(rad/s^2)";
-    io::write_dataset<float>(file, "/fields/p" + std::to_string(field), result.series[f], {np, ns}, units);
+    std::vector<float> all = result.series[f];
+    for (const auto& heard : result.surface_series[f])
+      for (hsize_t k = 0; k < ns; ++k) all.push_back(static_cast<float>(heard.value[k]));
+    io::write_dataset<float>(file, "/fields/p" + std::to_string(field), all, {np, ns}, units);
   }
   io::write_provenance(file, command, config.to_toml(), n_ranks);
   file.commit();
@@ -204,7 +261,7 @@ void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult
 
 Command add_solve_command(CLI::App& parent) {
   return add_config_command(
-      parent, "solve", "FDTD solves around one rigid ellipsoid for the chosen rigid-body fields, recorded at listener "
+      parent, "solve", "FDTD solves around one rigid ellipsoid or closed mesh for the chosen rigid-body fields, recorded at listener "
                        "points",
       solve_schema(), "raw.h5", "output HDF5 file of raw time series",
       [](const RunContext& context, const io::Config& config, const std::string& out) {

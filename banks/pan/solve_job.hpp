@@ -11,11 +11,15 @@
 #include "cli/command.hpp"
 #include "io/config.hpp"
 #include "banks/pan/solve_spec.hpp"
+#include "kernels/fdtd/kirchhoff.hpp"
 
 namespace clatter::jobs {
 
 struct SolveResult {
   std::vector<std::vector<float>> series;  // per field: [listener][sample], rank 0 only
+  // Through the Kirchhoff surface, rank 0 only: per field, one series per far direction (R p
+  // against the retarded time) and per surface listener.
+  std::vector<std::vector<kernels::fdtd::KirchhoffSeries>> far, surface_series;
   double cell_updates_per_s = 0;
   long long cells = 0;  // per step, all ranks
   double bytes = 0;     // solver storage, all ranks

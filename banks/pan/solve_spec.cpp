@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <memory>
+
 #include "core/errors.hpp"
 #include "banks/medium_keys.hpp"
+#include "io/mesh.hpp"
 #include "kernels/fdtd/dispersion.hpp"
 #include "kernels/fdtd/listeners.hpp"
 
@@ -16,26 +19,34 @@ namespace fdtd = kernels::fdtd;
 
 const io::Schema& solve_schema() {
   static const io::Schema schema = [] {
-    io::Schema s{"clatter-bank solve: FDTD pulse solves around one rigid ellipsoid", medium_and_pulse_keys()};
+    io::Schema s{"clatter-bank solve: FDTD pulse solves around one rigid ellipsoid or closed mesh", medium_and_pulse_keys()};
     s.keys.insert(s.keys.end(), {
-          {"object.kind", std::string("ellipsoid"), "ellipsoid (rigid body, fields 1-6) or monopole (a point "
-                                                    "source at the origin, for absorbing-layer checks)",
-           {}, {"ellipsoid", "monopole"}},
+          {"object.kind", std::string("ellipsoid"), "ellipsoid or mesh (rigid body, fields 1-6) or monopole (a "
+                                                    "point source at the origin, for absorbing-layer checks)",
+           {}, {"ellipsoid", "mesh", "monopole"}},
           {"object.a_m", 0.5, "semi-axis A along x [m]", {0.0, 100.0, true}},
           {"object.b_m", 0.35, "semi-axis B along y [m]", {0.0, 100.0, true}},
           {"object.c_m", 0.2, "semi-axis C along z [m]", {0.0, 100.0, true}},
+          {"object.mesh", std::string(""), "kind mesh: a closed, consistently oriented triangle mesh (Wavefront OBJ, "
+                                           "coordinates in m, a path relative to the working directory), moved to its "
+                                           "centre of mass; rotations turn about it in the mesh's own axes"},
+          {"object.scale", 1.0, "kind mesh: factor on the mesh's coordinates", {0.0, 1e4, true}},
           {"grid.dx_m", 0.0065, "cell size [m]; the paper's 6.5 mm keeps the me4 scheme within 2 % at 1 m for "
                                 "h = 1e-4 s (docs/fdtd.md, error budget)", {0.0, 10.0, true}},
           {"grid.half_width_m", 1.0, "half width of the domain inside the absorbing layer [m]", {0.0, 1e4, true}},
           {"grid.pml_cells", std::int64_t{6}, "thickness of the perfectly matched layer [cells]; 6 reflect <= -70 dB", {0, 256}},
-          {"grid.octant", true, "solve x, y, z >= 0 only, with mirror planes (8x less work)"},
+          {"grid.octant", true, "solve x, y, z >= 0 only, with mirror planes (8x less work); a mesh must be "
+                                "mirror-symmetric in x = 0, y = 0 and z = 0 about its centre of mass"},
           {"time.dt_s", 1.0 / 96000.0, "time step [s]; CFL limit dx / (c sqrt 3)", {0.0, 1.0, true}},
           {"time.duration_s", 0.006, "recorded time after t = 0 (the centre of psi) [s]", {0.0, 100.0, true}},
           {"solve.fields", io::RealList{1, 2, 3, 4, 5, 6},
            "rigid-body fields: 1-3 translation along x, y, z; 4-6 rotation about x, y, z", {1, 6}},
           {"listeners.points_m",
            io::RealList{0.8, 0, 0, 0, 0.8, 0, 0, 0, 0.8, 0.6, 0.5, 0.3, -0.6, 0.5, -0.3},
-           "listener positions [m], ellipsoid centred on the origin", {-1e4, 1e4}, {}, 3},
+           "listener positions [m], the body centred on the origin (a mesh: on its centre of mass)", {-1e4, 1e4}, {}, 3},
+          {"kirchhoff.radius_m", 0.0, "radius of a Kirchhoff surface (a staircase ball of cell faces) around the body; "
+                                      "listeners beyond it are heard through it, past the grid's edge too (docs/fdtd.md); "
+                                      "0: none", {0.0, 1e4}},
           {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
           {"solver.pml_reflection", 1e-5, "design reflection of the PML grading at normal incidence", {0.0, 1.0, true}},
           {"solver.scheme", std::string("me4"), "update away from the body: me4 (fourth order in space and time, "
@@ -58,6 +69,8 @@ SolveParams parse_solve_params(const io::Config& config) {
   p.object_a_m = config.real("object.a_m");
   p.object_b_m = config.real("object.b_m");
   p.object_c_m = config.real("object.c_m");
+  p.object_mesh = config.string("object.mesh");
+  p.object_scale = config.real("object.scale");
   p.grid_dx_m = config.real("grid.dx_m");
   p.grid_half_width_m = config.real("grid.half_width_m");
   p.grid_pml_cells = static_cast<int>(config.integer("grid.pml_cells"));
@@ -71,6 +84,7 @@ SolveParams parse_solve_params(const io::Config& config) {
   p.solver_pml_reflection = config.real("solver.pml_reflection");
   p.solver_scheme = config.string("solver.scheme");
   p.solver_max_dispersion_error = config.real("solver.max_dispersion_error");
+  p.kirchhoff_radius_m = config.real("kirchhoff.radius_m");
   return p;
 }
 
@@ -92,6 +106,37 @@ SolveSpec make_solve_spec(const SolveParams& in) {
   const double dx = in.grid_dx_m;
   const bool monopole = in.object_kind == "monopole";
   p.body = {in.object_a_m, in.object_b_m, in.object_c_m};
+  if (in.object_kind == "mesh") {
+    if (in.object_mesh.empty()) throw InputError("config: key 'object.mesh' is empty: object.kind = \"mesh\" needs an OBJ file");
+    auto mesh_error = [&](const std::string& why) {
+      return InputError(fmt::format("config: key 'object.mesh' = \"{}\": {}", in.object_mesh, why));
+    };
+    io::TriangleMesh mesh;
+    try {
+      mesh = io::read_obj(in.object_mesh);
+    } catch (const InputError& e) {
+      throw mesh_error(e.what());
+    }
+    spec.mesh_path = in.object_mesh;
+    spec.mesh_hash = io::mesh_hash(mesh);
+    spec.mesh_scale = in.object_scale;
+    for (auto& v : mesh.vertices_m)
+      for (double& x : v) x *= in.object_scale;
+    try {
+      p.mesh = std::make_shared<const fdtd::MeshBody>(std::move(mesh.vertices_m), std::move(mesh.triangles));
+    } catch (const std::invalid_argument& e) {
+      throw mesh_error(e.what());
+    }
+    if (in.grid_octant && !p.mesh->mirror_symmetric())
+      throw InputError(fmt::format("config: key 'grid.octant' = true: the mesh '{}' (object.mesh) is not mirror-symmetric "
+                                   "in the planes x = 0, y = 0, z = 0 through its centre of mass ({}): set grid.octant = "
+                                   "false to solve the full domain",
+                                   in.object_mesh,
+                                   std::isfinite(p.mesh->mirror_mismatch())
+                                       ? fmt::format("sampled lines differ from their mirror images by {:.3g} of its radius",
+                                                     p.mesh->mirror_mismatch())
+                                       : std::string("a sampled line and its mirror image cross it a different number of times")));
+  }
 
   // Both schemes' limit (docs/fdtd.md): srl's from the checkerboard mode, me4's from
   // 4 lambda^2 - 3 lambda^4 <= 1 at the same mode.
@@ -108,7 +153,15 @@ SolveSpec make_solve_spec(const SolveParams& in) {
   p.grid.octant = in.grid_octant;
   const int n = p.grid.octant ? n_half + pml : 2 * (n_half + pml);
   p.grid.n = {n, n, n};
-  if (!monopole) {
+  if (p.mesh) {
+    const auto lo = p.mesh->box_lo_m(), hi = p.mesh->box_hi_m();
+    for (int a = 0; a < 3; ++a)
+      if (std::max(-lo[a], hi[a]) + dx > n_half * dx)
+        throw InputError(fmt::format("config: key 'object.mesh' = \"{}\": the mesh (centred on its centre of mass, "
+                                     "scale {}) reaches {} m along {} and must lie inside the domain with a cell to "
+                                     "spare (grid.half_width_m = {} gives {} cells of {} m)",
+                                     in.object_mesh, in.object_scale, std::max(-lo[a], hi[a]), "xyz"[a], half, n_half, dx));
+  } else if (!monopole) {
     const std::array<const char*, 3> keys{"object.a_m", "object.b_m", "object.c_m"};
     const std::array<double, 3> r{p.body.a_m, p.body.b_m, p.body.c_m};
     for (int a = 0; a < 3; ++a)
@@ -116,6 +169,8 @@ SolveSpec make_solve_spec(const SolveParams& in) {
         throw InputError(fmt::format("config: key '{}' = {}: the ellipsoid must lie inside the domain with a cell to "
                                      "spare (grid.half_width_m = {} gives {} cells of {} m)",
                                      keys[a], r[a], half, n_half, dx));
+  }
+  if (!monopole) {
     for (double f : in.solve_fields) {
       if (f != std::floor(f)) throw InputError(fmt::format("config: key 'solve.fields' has {}: not a field index 1-6", f));
       spec.fields.push_back(static_cast<int>(f));
@@ -126,20 +181,41 @@ SolveSpec make_solve_spec(const SolveParams& in) {
   }
 
   if (in.listeners_points_m.empty()) throw InputError("config: key 'listeners.points_m' is empty: give at least one point");
-  spec.listeners_m = in.listeners_points_m;
-  for (std::size_t l = 0; l < spec.listeners_m.size(); ++l) {
+  const double body_radius = monopole ? 0.0 : p.solid().bounding_radius_m();
+  // The Kirchhoff surface: its inner cells across each face fluid (3 cells off the body's bounding
+  // sphere), its outer ones and their images clear of the layer (kernels/fdtd/kirchhoff.hpp).
+  const double rs = in.kirchhoff_radius_m;
+  if (rs > 0) {
+    if (rs < body_radius + 3 * dx)
+      throw InputError(fmt::format("config: key 'kirchhoff.radius_m' has {}: must be at least 3 cells ({} m) beyond the "
+                                   "body's bounding radius {} m", rs, 3 * dx, body_radius));
+    const fdtd::Box interior = p.grid.interior();
+    const double room_m = (interior.hi[0] - p.grid.origin(0)) * dx;
+    if (rs + 3 * dx > room_m)
+      throw InputError(fmt::format("config: key 'kirchhoff.radius_m' has {}: the surface and the 2 cells outside it "
+                                   "need {} m, the grid has {} m inside the layer (grid.half_width_m)", rs, rs + 3 * dx, room_m));
+    spec.kirchhoff_radius_m = rs;
+  }
+  for (std::size_t l = 0; l < in.listeners_points_m.size(); ++l) {
+    const auto& x = in.listeners_points_m[l];
+    const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    if (rs > 0 && r > rs + 2 * dx) {  // outside the surface: heard through it
+      spec.surface_listeners_m.push_back(x);
+      continue;
+    }
     fdtd::Problem probe = p;
     probe.field = monopole ? 0 : 1;
-    const auto& x = spec.listeners_m[l];
     if (auto why = fdtd::listener_problem(probe, x))
       throw InputError(fmt::format("config: key 'listeners.points_m' point {} = [{}, {}, {}]: {}", l + 1, x[0], x[1],
                                    x[2], *why));
+    spec.listeners_m.push_back(x);
   }
   // The error budget's dispersion term at the farthest listener, over the distance from the body's
-  // bounding sphere (where the body's sound starts; the whole distance for the monopole).
-  const double body_radius = monopole ? 0.0 : std::max({p.body.a_m, p.body.b_m, p.body.c_m});
+  // bounding sphere (where the body's sound starts; the whole distance for the monopole); beyond
+  // the Kirchhoff surface the sound travels exactly, so only the grid's part counts.
   for (const auto& x : spec.listeners_m)
     spec.farthest_m = std::max(spec.farthest_m, std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - body_radius);
+  if (!spec.surface_listeners_m.empty()) spec.farthest_m = std::max(spec.farthest_m, rs + 2 * dx - body_radius);
   spec.band_edge_hz = fdtd::pulse_band_edge_hz(p.h_s);
   spec.predicted_error = fdtd::worst_dispersion_error(p.scheme, p.courant(), dx, p.c_m_s, p.h_s, spec.farthest_m);
   spec.max_dispersion_error = in.solver_max_dispersion_error;

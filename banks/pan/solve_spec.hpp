@@ -23,8 +23,10 @@ inline constexpr int kRawFormatVersion = 2;
 struct SolveParams {
   double medium_c_m_s = 0, medium_rho_kg_m3 = 0;
   double pulse_h_s = 0;
-  std::string object_kind;  // "ellipsoid" or "monopole"
+  std::string object_kind;  // "ellipsoid", "mesh" or "monopole"
   double object_a_m = 0, object_b_m = 0, object_c_m = 0;
+  std::string object_mesh;  // kind "mesh": the OBJ file
+  double object_scale = 1;  // kind "mesh": factor on its coordinates
   double grid_dx_m = 0, grid_half_width_m = 0;
   int grid_pml_cells = 0;
   bool grid_octant = true;
@@ -35,6 +37,7 @@ struct SolveParams {
   double solver_pml_reflection = 0;
   std::string solver_scheme = "me4";
   double solver_max_dispersion_error = 0.02;
+  double kirchhoff_radius_m = 0;  // 0: no Kirchhoff surface
 };
 
 SolveParams parse_solve_params(const io::Config& config);
@@ -44,6 +47,12 @@ struct SolveSpec {
   kernels::fdtd::Problem problem;  // field set per solve
   std::vector<int> fields;         // 1..6, or {0} for the monopole
   std::vector<std::array<double, 3>> listeners_m;
+  // The Kirchhoff surface (kernels/fdtd/kirchhoff.hpp; 0: none): the radius of its staircase ball,
+  // and what it gives: the far field R p in each of far_directions, and the field at
+  // surface_listeners_m (points anywhere outside the surface, beyond the grid's edge too).
+  double kirchhoff_radius_m = 0;
+  std::vector<std::array<double, 3>> far_directions;
+  std::vector<std::array<double, 3>> surface_listeners_m;
   int i_time_zero = 0;             // sample index of t = 0 (the centre of psi)
   int n_samples = 0;               // samples per series, t_k = (k - i_time_zero) dt
   // The resolution, as the error budget (docs/fdtd.md) sees it.
@@ -51,6 +60,10 @@ struct SolveSpec {
   double farthest_m = 0;           // longest listener distance from the body's bounding sphere
   double predicted_error = 0;      // worst-direction dispersion error of psi over farthest_m
   double max_dispersion_error = 0; // the bound above which the solve warns
+  // A body given as a mesh (problem.mesh set): its file, io::mesh_hash of the mesh as read, and
+  // its scale; the centre-of-mass offset is problem.mesh->centre_of_mass_offset_m().
+  std::string mesh_path, mesh_hash;
+  double mesh_scale = 1;
 };
 
 // Throws InputError naming the key and value for any invalid combination.

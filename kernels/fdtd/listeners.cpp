@@ -63,7 +63,7 @@ std::optional<std::string> listener_problem(const Problem& problem, const std::a
              " cells of the absorbing layer, where the scheme blends into it (grow grid.half_width_m)";
   }
   if (problem.field != 0) {
-    const Ellipsoid& e = problem.body;
+    const SolidBody& e = problem.solid();
     if (e.contains(x_m[0], x_m[1], x_m[2])) return std::string("inside the object");
     for (const auto& c : fs.cell) {
       const CellGeometry geo = cell_geometry(

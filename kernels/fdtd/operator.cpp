@@ -112,19 +112,21 @@ void Operator::split_bulk(const Box& owned) {
 void Operator::build_cut_cells() {
   if (problem_.field == 0) return;
   const Grid& g = problem_.grid;
-  const Ellipsoid& e = problem_.body;
+  const SolidBody& solid_body = problem_.solid();
   const double dx = g.dx_m;
   const bool band = problem_.scheme == Scheme::me4;
   const int reach_band = band ? 2 : 0;
-  // Cells whose class is needed: within one cell of the ellipsoid's bounding box, and, for the
-  // band, two more cells around those this block owns. Global indices, not clipped: a negative
-  // index in octant mode is the mirror image of a solved cell, and cell_geometry mirrors it.
+  // Cells whose class is needed: within one cell of the body's bounding box, and, for the band,
+  // two more cells around those this block owns. Global indices, not clipped: a negative index in
+  // octant mode is the mirror image of a solved cell, and cell_geometry mirrors it.
   Box region = bulk_;
-  const std::array<double, 3> r{e.a_m, e.b_m, e.c_m};
+  const std::array<double, 3> box_lo = solid_body.box_lo_m(), box_hi = solid_body.box_hi_m();
   for (int a = 0; a < 3; ++a) {
-    const int reach = static_cast<int>(std::ceil(r[a] / dx)) + 1;
-    region.lo[a] = std::max(bulk_.lo[a] - reach_band, g.origin(a) - reach);
-    region.hi[a] = std::min(bulk_.hi[a] + reach_band, g.origin(a) + reach);
+    // For the ellipsoid (box +-r) these are origin -+ (ceil(r / dx) + 1), as before meshes.
+    const int below = static_cast<int>(std::floor(box_lo[a] / dx)) - 1;
+    const int above = static_cast<int>(std::ceil(box_hi[a] / dx)) + 1;
+    region.lo[a] = std::max(bulk_.lo[a] - reach_band, g.origin(a) + below);
+    region.hi[a] = std::min(bulk_.hi[a] + reach_band, g.origin(a) + above);
   }
   if (region.empty()) return;
   enum : unsigned char { fluid, cut, solid };
@@ -133,14 +135,20 @@ void Operator::build_cut_cells() {
     return (static_cast<std::size_t>(i - region.lo[0]) * rn[1] + (j - region.lo[1])) * rn[2] + (k - region.lo[2]);
   };
   auto geometry = [&](int i, int j, int k) {
-    return cell_geometry(e, {g.centre_m(0, i), g.centre_m(1, j), g.centre_m(2, k)}, dx, problem_.cut_cell_samples);
+    return cell_geometry(solid_body, {g.centre_m(0, i), g.centre_m(1, j), g.centre_m(2, k)}, dx, problem_.cut_cell_samples);
   };
+  const Box owned_region = region.intersect(bulk_);
   std::vector<unsigned char> kind(static_cast<std::size_t>(region.cells()), fluid);
+  // The geometry of this block's cut cells, kept in the order the loop below visits them (both
+  // loops run i, j, k lexicographically): a mesh's cells cost hundreds of line casts each.
+  std::vector<CellGeometry> owned_cut;
   for (int i = region.lo[0]; i < region.hi[0]; ++i)
     for (int j = region.lo[1]; j < region.hi[1]; ++j)
       for (int k = region.lo[2]; k < region.hi[2]; ++k) {
         const CellGeometry geo = geometry(i, j, k);
-        kind[slot(i, j, k)] = geo.fully_fluid() ? fluid : geo.solid() ? solid : cut;
+        const unsigned char c = geo.fully_fluid() ? fluid : geo.solid() ? solid : cut;
+        kind[slot(i, j, k)] = c;
+        if (c == cut && owned_region.contains({i, j, k})) owned_cut.push_back(geo);
       }
   auto near_body = [&](int i, int j, int k) {
     static const std::vector<std::array<int, 3>> offsets = me4_offsets();
@@ -151,7 +159,7 @@ void Operator::build_cut_cells() {
     return false;
   };
   const double rho_c2_dt2 = problem_.rho_kg_m3 * problem_.c_m_s * problem_.c_m_s * problem_.dt_s * problem_.dt_s;
-  const Box owned_region = region.intersect(bulk_);
+  std::size_t next_cut = 0;
   for (int i = owned_region.lo[0]; i < owned_region.hi[0]; ++i)
     for (int j = owned_region.lo[1]; j < owned_region.hi[1]; ++j)
       for (int k = owned_region.lo[2]; k < owned_region.hi[2]; ++k) {
@@ -170,7 +178,7 @@ void Operator::build_cut_cells() {
           cut_.body_all.push_back({});
           continue;
         }
-        const CellGeometry geo = geometry(i, j, k);  // cut cells are few: computed again, not stored
+        const CellGeometry& geo = owned_cut[next_cut++];
         double open = 0;
         for (double a : geo.alpha) open += a;
         // Stability: an effective volume of at least (sum of open faces)/6 keeps the standard CFL limit.

@@ -1,8 +1,10 @@
 #pragma once
+#include <memory>
 #include <optional>
 #include <string_view>
 
 #include "kernels/fdtd/geometry.hpp"
+#include "kernels/fdtd/mesh_body.hpp"
 #include "kernels/fdtd/grid.hpp"
 
 namespace clatter::kernels::fdtd {
@@ -33,11 +35,16 @@ struct Problem {
   double dt_s = 0;
   double h_s = 1e-4;             // width of the pulse psi(t; h) driving the source
   int field = 1;                 // 1..6: rigid-body field of `body` (eq. 9); 0: monopole at the origin, no body
-  Ellipsoid body;
+  Ellipsoid body;                // the body, unless `mesh` is set
+  // A body given as a closed triangle mesh (centred on its centre of mass), shared and immutable:
+  // copies of the Problem (one per field and rank) share its bin index. Replaces `body` when set.
+  std::shared_ptr<const MeshBody> mesh;
   int cut_cell_samples = 16;     // samples per cell edge for volume and face fractions
   double pml_reflection = 1e-5;  // design normal-incidence reflection of the PML grading
   Scheme scheme = Scheme::me4;
 
+  // The rigid body of fields 1..6: the mesh when there is one, else the ellipsoid.
+  const SolidBody& solid() const { return mesh ? static_cast<const SolidBody&>(*mesh) : body; }
   double courant() const { return c_m_s * dt_s / grid.dx_m; }
   // Mirror sign of this field across the plane normal to `axis`.
   int parity(int axis) const { return field_parity(field, axis); }

@@ -12,13 +12,20 @@ Fitter::Fitter(std::vector<double> radii_m, std::vector<int> shift_steps, int te
   const int m = static_cast<int>(radii_m_.size());
   if (m < terms || terms < 1 || shift_.size() != radii_m_.size())
     throw std::invalid_argument("PAN fit needs at least as many radii as series terms");
-  Eigen::MatrixXd v(m, terms);
-  for (int i = 0; i < m; ++i)
-    for (int k = 0; k < terms; ++k) v(i, k) = std::pow(radii_m_[static_cast<std::size_t>(i)], -(k + 1));
-  const Eigen::MatrixXd p = v.completeOrthogonalDecomposition().pseudoInverse();  // N x M
-  pinv_.resize(static_cast<std::size_t>(terms) * static_cast<std::size_t>(m));
-  for (int k = 0; k < terms; ++k)
-    for (int i = 0; i < m; ++i) pinv_[static_cast<std::size_t>(k * m + i)] = p(k, i);
+  // The pseudo-inverse of the M x K matrix R_i^-(first + k), row-major [K][M].
+  auto pinv = [&](int first, int count) {
+    std::vector<double> out(static_cast<std::size_t>(count) * static_cast<std::size_t>(m));
+    if (count == 0) return out;
+    Eigen::MatrixXd v(m, count);
+    for (int i = 0; i < m; ++i)
+      for (int k = 0; k < count; ++k) v(i, k) = std::pow(radii_m_[static_cast<std::size_t>(i)], -(first + k));
+    const Eigen::MatrixXd p = v.completeOrthogonalDecomposition().pseudoInverse();
+    for (int k = 0; k < count; ++k)
+      for (int i = 0; i < m; ++i) out[static_cast<std::size_t>(k * m + i)] = p(k, i);
+    return out;
+  };
+  pinv_ = pinv(1, terms);
+  pinv_near_ = pinv(2, terms - 1);
 }
 
 int support_delay_steps(const std::array<double, 3>& d, double a_m, double b_m, double c_m, double c_m_s, double dt_s) {
@@ -27,9 +34,10 @@ int support_delay_steps(const std::array<double, 3>& d, double a_m, double b_m, 
 }
 
 model::SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon,
-                        int delay_steps) const {
+                               int delay_steps, const std::vector<double>* far_field) const {
   const std::size_t m = radii_m_.size(), n = wavelet_.length();
   if (series.size() != m) throw std::invalid_argument("PAN fit: one series per radius");
+  if (far_field && far_field->size() != n) throw std::invalid_argument("PAN fit: the far field is not one wavelet length");
   std::vector<std::vector<double>> coef(m, std::vector<double>(n, 0.0));
   std::vector<double> peak(m, 0.0);
   for (std::size_t i = 0; i < m; ++i) {
@@ -43,15 +51,32 @@ model::SparseTerms Fitter::fit(const std::vector<const float*>& series, std::siz
     wavelet_.forward(coef[i]);
     for (double c : coef[i]) peak[i] = std::max(peak[i], std::abs(c));
   }
+  std::vector<double> far;
+  double far_peak = 0;
+  if (far_field) {
+    far = *far_field;
+    wavelet_.forward(far);
+    for (double c : far) far_peak = std::max(far_peak, std::abs(c));
+  }
   model::SparseTerms out;
   for (std::size_t j = 0; j < n; ++j) {
-    bool keep = false;
+    bool keep = far_field && far_peak > 0 && std::abs(far[j]) >= epsilon * far_peak;
     for (std::size_t i = 0; i < m && !keep; ++i) keep = peak[i] > 0 && std::abs(coef[i][j]) >= epsilon * peak[i];
     if (!keep) continue;
     out.index.push_back(static_cast<std::uint32_t>(j));
-    for (int k = 0; k < terms_; ++k) {
+    if (!far_field) {
+      for (int k = 0; k < terms_; ++k) {
+        double q = 0;
+        for (std::size_t i = 0; i < m; ++i) q += pinv_[static_cast<std::size_t>(k) * m + i] * coef[i][j];
+        out.value.push_back(static_cast<float>(q));
+      }
+      continue;
+    }
+    out.value.push_back(static_cast<float>(far[j]));
+    for (int k = 0; k + 1 < terms_; ++k) {
       double q = 0;
-      for (std::size_t i = 0; i < m; ++i) q += pinv_[static_cast<std::size_t>(k) * m + i] * coef[i][j];
+      for (std::size_t i = 0; i < m; ++i)
+        q += pinv_near_[static_cast<std::size_t>(k) * m + i] * (coef[i][j] - far[j] / radii_m_[i]);
       out.value.push_back(static_cast<float>(q));
     }
   }

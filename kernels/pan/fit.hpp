@@ -22,8 +22,14 @@ class Fitter {
   // series[i]: p(R_i, t_n) for n = 0 .. n_samples-1 (t_n = t_first + n dt). `delay_steps` aligns
   // this direction further: coefficient sample n is p(R_i, t_first + (n + shift_i - delay) dt).
   // The result is one direction of a bank's field as stored (model/pan_bank.hpp).
+  //
+  // With `far_field` (length(), on the coefficients' retarded time: sample n is the far field R p
+  // at tau = t_first + (n + shift_i - delay) dt - R_i / c), q_1 is the far field itself and only
+  // q_2 .. q_N are fitted, to p(R_i) - q_1 / R_i: the series then tends to the true far field
+  // however few radii were fitted. A coefficient is also kept where the far field's reaches
+  // epsilon of its peak. Needs terms() >= 1; with one term nothing is fitted.
   model::SparseTerms fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon,
-                  int delay_steps = 0) const;
+                         int delay_steps = 0, const std::vector<double>* far_field = nullptr) const;
 
   int terms() const { return terms_; }
   std::size_t length() const { return wavelet_.length(); }
@@ -32,7 +38,8 @@ class Fitter {
   std::vector<double> radii_m_;
   std::vector<int> shift_;
   int terms_;
-  std::vector<double> pinv_;  // [N][M]
+  std::vector<double> pinv_;       // [N][M]
+  std::vector<double> pinv_near_;  // [N - 1][M]: q_2 .. q_N alone
   Wavelet wavelet_;
 };
 

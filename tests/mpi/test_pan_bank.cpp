@@ -71,19 +71,30 @@ SphereProxy sphere_proxy(const std::string& file) {
 // between consecutive fitted radii, none fitted) in a direction strictly inside a triangle, at
 // epsilon = 0.01; proxy (0.35, 0.2) at the default (demo) resolution. Returns the largest error
 // over the radii, per field.
+std::vector<double> errors_at(const jobs::PanSpec& spec, const std::vector<double>& radii, int divisions,
+                              kernels::pan::Interpolation interpolation);
+
 std::vector<double> held_out_errors(int divisions, kernels::pan::Interpolation interpolation) {
   io::Config config = demo_config();
   config.set("proxies.list_m=[[0.35, 0.2]]");
   config.set("fit.divisions=" + std::to_string(divisions));
   const auto spec = jobs::make_pan_spec(config);
+  std::vector<double> radii;
+  for (std::size_t i = 0; i + 1 < spec.radii_m.size(); ++i) radii.push_back(0.5 * (spec.radii_m[i] + spec.radii_m[i + 1]));
+  return errors_at(spec, radii, divisions, interpolation);
+}
+
+// The same check for any spec at any radii (rounded to whole steps) in the held-out direction.
+std::vector<double> errors_at(const jobs::PanSpec& spec, const std::vector<double>& wanted_radii, int divisions,
+                              kernels::pan::Interpolation interpolation) {
   const double step = spec.solve.problem.c_m_s * spec.solve.problem.dt_s;
   const std::array<double, 3> d{0.37, 0.52, 0.77};
   const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   std::vector<double> radii;
   std::vector<std::array<double, 3>> points;
-  for (std::size_t i = 0; i + 1 < spec.radii_m.size(); ++i) {
+  for (double r : wanted_radii) {
     // Whole steps, so the raw series lines up with PAN samples without interpolation.
-    radii.push_back(std::round(0.5 * (spec.radii_m[i] + spec.radii_m[i + 1]) / step) * step);
+    radii.push_back(std::round(r / step) * step);
     points.push_back({radii.back() * d[0] / n, radii.back() * d[1] / n, radii.back() * d[2] / n});
   }
   auto result = jobs::build_proxy(MPI_COMM_WORLD, spec, 0, points, 0.0);
@@ -100,13 +111,21 @@ std::vector<double> held_out_errors(int divisions, kernels::pan::Interpolation i
     for (std::size_t l = 0; l < points.size(); ++l) {
       const auto s = kernels::pan::evaluate({&header, &proxy, field}, points[l], 1.0, 0.0, interpolation);
       // PAN sample k is at t0 + k dt; t0 is a whole number of steps from raw sample 0 up to the
-      // interpolated direction delay, rounded here (both series are smooth at this rate).
-      const long offset = std::lround((s.t0_s + spec.solve.i_time_zero * dt) / dt);
+      // interpolated direction delay: the PAN series is read at the raw sample times by cubic
+      // Lagrange interpolation (rounding the offset instead cost up to 5 % on field 4 of an
+      // elongated proxy).
+      const double offset = (s.t0_s + spec.solve.i_time_zero * dt) / dt;
+      const long whole = static_cast<long>(std::floor(offset));
+      const double frac = offset - static_cast<double>(whole);  // raw sample k = PAN index k - whole - frac
+      auto pan_at = [&](long j) { return j >= 0 && j < static_cast<long>(s.p.size()) ? s.p[static_cast<std::size_t>(j)] : 0.0; };
+      const double x = 1.0 - frac;  // PAN index k - whole - 1 + x
+      const std::array<double, 4> w{-x * (x - 1) * (x - 2) / 6, (x + 1) * (x - 1) * (x - 2) / 2, -(x + 1) * x * (x - 2) / 2,
+                                    (x + 1) * x * (x - 1) / 6};
       const float* raw = result.extra_series[f].data() + l * ns;
       double num = 0, den = 0;
       for (std::size_t k = 0; k < ns; ++k) {
-        const long j = static_cast<long>(k) - offset;
-        const double pan = j >= 0 && j < static_cast<long>(s.p.size()) ? s.p[static_cast<std::size_t>(j)] : 0.0;
+        const long j = static_cast<long>(k) - whole - 1;
+        const double pan = w[0] * pan_at(j - 1) + w[1] * pan_at(j) + w[2] * pan_at(j + 1) + w[3] * pan_at(j + 2);
         num += (pan - raw[k]) * (pan - raw[k]);
         den += double{raw[k]} * raw[k];
       }
@@ -133,6 +152,22 @@ TEST(PanBank, LinearDirectionInterpolationNeedsFinerDirections) {
   for (std::size_t f = 0; f < 3; ++f) EXPECT_LT(paper[f], 0.05) << "field " << f + 1;
   const auto fine = held_out_errors(16, kernels::pan::Interpolation::linear);
   for (std::size_t f = 0; f < fine.size(); ++f) EXPECT_LT(fine[f], 0.05) << "field " << f + 1;
+}
+
+TEST(PanBank, FarFieldFitHoldsFromTheRadiiOutToThreeMetresAtTheDemoResolution) {
+  // fit.far_field: every listener (the held-out ones too) heard through the Kirchhoff surface,
+  // q_1 the far field, q_2 and q_3 fitted. At the demo resolution the elongated proxy's held-out
+  // errors stay within 8 % out to 3 m (docs/pan.md, "The far field": the paper's fit gives 12 % and
+  // 36 % at 3 m for fields 1 and 4 there).
+  io::Config config = demo_config();
+  config.set("proxies.list_m=[[0.2625, 0.12]]");
+  config.set("solve.fields=[1, 4]");
+  config.set("fit.far_field=true");
+  config.set("fit.terms=3");
+  const auto spec = jobs::make_pan_spec(config);
+  const auto errors = errors_at(spec, {0.92, 1.35, 1.8, 3.0}, 8, kernels::pan::Interpolation::quadratic);
+  if (!root()) return;
+  for (std::size_t f = 0; f < errors.size(); ++f) EXPECT_LT(errors[f], 0.08) << "field " << spec.solve.fields[f];
 }
 
 TEST(PanBank, SphereProxyReproducesTheExactTranslatingSphere) {

@@ -159,6 +159,57 @@ TEST(PanFit, ExactSeriesIsRecoveredAtAHeldOutRadiusAndDirection) {
   }
 }
 
+// A field with a third term, q_3 / R^3, which a two-term fit over the radii alone absorbs into its
+// q_1 and q_2. Given the far field q_1 itself, only q_2 absorbs it, and that decays as 1/R^2: the
+// series extrapolates. Relative L2 at R in direction d of the fit of `terms` terms, with or without q_1.
+double three_term_error(bool with_far_field, double r, int terms = 2) {
+  const std::vector<int> shifts = {180, 230, 300, 400, 550};
+  std::vector<double> radii;
+  for (int k : shifts) radii.push_back(k * kC * kDt);
+  const int i0 = 20;
+  const std::size_t n_samples = 750, length = next_power_of_two(n_samples - 180);
+  const Fitter fitter(radii, shifts, terms, length);
+  const std::array<double, 3> d{0.6, 0.0, 0.8};
+  auto q3 = [&](double t) { return 0.15 * clatter::kernels::pulse(t - 2e-4, kH); };
+  auto p = [&](double radius, double t) {
+    const double tr = t - radius / kC;
+    return q(1, d, tr) / radius + q(2, d, tr) / (radius * radius) + q3(tr) / (radius * radius * radius);
+  };
+  std::vector<std::vector<float>> series(radii.size(), std::vector<float>(n_samples));
+  std::vector<const float*> ptr;
+  for (std::size_t i = 0; i < radii.size(); ++i) {
+    for (std::size_t n = 0; n < n_samples; ++n) series[i][n] = static_cast<float>(p(radii[i], (static_cast<double>(n) - i0) * kDt));
+    ptr.push_back(series[i].data());
+  }
+  std::vector<double> far(length);
+  for (std::size_t n = 0; n < length; ++n) far[n] = q(1, d, (static_cast<double>(n) - i0) * kDt);
+  const auto fitted = fitter.fit(ptr, n_samples, 0.0, 0, with_far_field ? &far : nullptr);
+  std::vector<double> c(length, 0.0);
+  accumulate(fitted, terms, r, 1.0, c);
+  cached_wavelet(length).inverse(c);
+  double num = 0, den = 0;
+  for (std::size_t n = 0; n < length; ++n) {
+    const double want = p(r, (static_cast<double>(n) - i0) * kDt + r / kC);
+    num += (c[n] - want) * (c[n] - want);
+    den += want * want;
+  }
+  return std::sqrt(num / den);
+}
+
+TEST(PanFit, TheFarFieldAsFirstTermMakesTheSeriesExtrapolate) {
+  const double alone_3m = three_term_error(false, 3.0), far_3m = three_term_error(true, 3.0);
+  const double alone_30m = three_term_error(false, 30.0), far_30m = three_term_error(true, 30.0);
+  std::printf("two terms, q_3 left out: at 3 m %.3g %% fitted alone, %.3g %% with the far field; at 30 m %.3g %%, %.3g %%\n",
+              100 * alone_3m, 100 * far_3m, 100 * alone_30m, 100 * far_30m);
+  EXPECT_LT(far_3m, alone_3m);
+  // Alone, the misfit of q_1 stays as R grows; with the far field what is left falls as 1/R.
+  EXPECT_GT(alone_30m, alone_3m);
+  EXPECT_LT(far_30m, 0.2 * far_3m);
+  EXPECT_GT(alone_30m, 10 * far_30m);
+  // With the far field and q_2, q_3 fitted, the three-term field is recovered (float storage).
+  EXPECT_LT(three_term_error(true, 3.0, 3), 1e-5);
+}
+
 TEST(PanFit, ThresholdKeepsFewCoefficientsAndStaysAccurate) {
   const auto full = build(0.0), sparse = build(0.01);
   std::size_t kept_full = 0, kept_sparse = 0;
