@@ -41,6 +41,12 @@ clatter_error_test(bad_solve_mesh_missing 0 "'object.mesh' = \"nowhere.obj\";can
                    solve --set object.kind=mesh --set object.mesh=nowhere.obj -o out.h5)
 clatter_error_test(bad_solve_mesh_octant_asymmetric 0 "'grid.octant' = true;tetrahedron.obj;not mirror-symmetric;grid.octant = false"
                    solve --set object.kind=mesh --set object.mesh=${bad}/tetrahedron.obj -o out.h5)
+clatter_error_test(bad_solve_kirchhoff_too_close 0 "'kirchhoff.radius_m' has 0.5;at least 3 cells"
+                   solve --set kirchhoff.radius_m=0.5 -o out.h5)
+clatter_error_test(bad_solve_kirchhoff_listener_too_late 0 "'listeners.points_m' point 1 = [3, 0, 0];arrives there;past time.duration_s"
+                   solve --set kirchhoff.radius_m=0.6 "--set=listeners.points_m=[[3, 0, 0]]" -o out.h5)
+clatter_error_test(bad_solve_far_without_surface 0 "'kirchhoff.far_directions' is given without a surface"
+                   solve "--set=kirchhoff.far_directions=[[1, 0, 0]]" -o out.h5)
 clatter_error_test(bad_solve_listener_in_blend 0 "'listeners.points_m' point 1 = [0.97, 0, 0];within 8 cells of the absorbing layer;grow grid.half_width_m"
                    solve "--set=listeners.points_m=[[0.97, 0, 0]]" -o out.h5)
 

@@ -255,6 +255,23 @@ void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult
       for (hsize_t k = 0; k < ns; ++k) all.push_back(static_cast<float>(heard.value[k]));
     io::write_dataset<float>(file, "/fields/p" + std::to_string(field), all, {np, ns}, units);
   }
+  if (!spec.far_directions.empty()) {
+    // The far field R p against tau = t - R/c, on the solve's step, starting before its record.
+    const hsize_t nd = spec.far_directions.size(), nf = result.far.front().front().value.size();
+    std::vector<double> dirs;
+    for (const auto& d : spec.far_directions) dirs.insert(dirs.end(), d.begin(), d.end());
+    io::write_dataset<double>(file, "/far/directions", dirs, {nd, 3}, "1");
+    io::write_attribute<double>(file, "/far", "tau_first_s", result.far.front().front().t_first_s);
+    for (std::size_t f = 0; f < spec.fields.size(); ++f) {
+      const int field = spec.fields[f];
+      const char* units = field == 0 ? "Pa m/(m^3/s^2)" : field <= 3 ? "Pa m/(m/s^2)" : "Pa m/(rad/s^2)";
+      std::vector<float> all;
+      for (const auto& s : result.far[f]) {
+        for (hsize_t k = 0; k < nf; ++k) all.push_back(static_cast<float>(k < static_cast<hsize_t>(s.valid_end) ? s.value[k] : 0.0));
+      }
+      io::write_dataset<float>(file, "/far/p" + std::to_string(field), all, {nd, nf}, units);
+    }
+  }
   io::write_provenance(file, command, config.to_toml(), n_ranks);
   file.commit();
 }

@@ -47,6 +47,9 @@ const io::Schema& solve_schema() {
           {"kirchhoff.radius_m", 0.0, "radius of a Kirchhoff surface (a staircase ball of cell faces) around the body; "
                                       "listeners beyond it are heard through it, past the grid's edge too (docs/fdtd.md); "
                                       "0: none", {0.0, 1e4}},
+          {"kirchhoff.far_directions", io::RealList{}, "directions (x, y, z; any length) in which to write the far field "
+                                                      "R p as R -> infinity, against tau = t - R/c (needs kirchhoff.radius_m)",
+           {-1e4, 1e4}, {}, 3},
           {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
           {"solver.pml_reflection", 1e-5, "design reflection of the PML grading at normal incidence", {0.0, 1.0, true}},
           {"solver.scheme", std::string("me4"), "update away from the body: me4 (fourth order in space and time, "
@@ -85,6 +88,8 @@ SolveParams parse_solve_params(const io::Config& config) {
   p.solver_scheme = config.string("solver.scheme");
   p.solver_max_dispersion_error = config.real("solver.max_dispersion_error");
   p.kirchhoff_radius_m = config.real("kirchhoff.radius_m");
+  const auto& far = config.reals("kirchhoff.far_directions");
+  for (std::size_t i = 0; i + 2 < far.size(); i += 3) p.kirchhoff_far_directions.push_back({far[i], far[i + 1], far[i + 2]});
   return p;
 }
 
@@ -200,6 +205,12 @@ SolveSpec make_solve_spec(const SolveParams& in) {
     const auto& x = in.listeners_points_m[l];
     const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
     if (rs > 0 && r > rs + 2 * dx) {  // outside the surface: heard through it
+      // The record must reach the sound's arrival there, or the series would be silently empty.
+      const double arrival_s = (r - body_radius) / p.c_m_s;
+      if (arrival_s >= in.time_duration_s)
+        throw InputError(fmt::format("config: key 'listeners.points_m' point {} = [{}, {}, {}]: the sound arrives there "
+                                     "{:.4g} s after the pulse, past time.duration_s = {}: raise it or use "
+                                     "kirchhoff.far_directions", l + 1, x[0], x[1], x[2], arrival_s, in.time_duration_s));
       spec.surface_listeners_m.push_back(x);
       continue;
     }
@@ -209,6 +220,15 @@ SolveSpec make_solve_spec(const SolveParams& in) {
       throw InputError(fmt::format("config: key 'listeners.points_m' point {} = [{}, {}, {}]: {}", l + 1, x[0], x[1],
                                    x[2], *why));
     spec.listeners_m.push_back(x);
+  }
+  for (std::size_t d = 0; d < in.kirchhoff_far_directions.size(); ++d) {
+    const auto& u = in.kirchhoff_far_directions[d];
+    const double norm = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    if (rs <= 0)
+      throw InputError("config: key 'kirchhoff.far_directions' is given without a surface: set kirchhoff.radius_m");
+    if (!(norm > 0))
+      throw InputError(fmt::format("config: key 'kirchhoff.far_directions' direction {} is zero", d + 1));
+    spec.far_directions.push_back({u[0] / norm, u[1] / norm, u[2] / norm});
   }
   // The error budget's dispersion term at the farthest listener, over the distance from the body's
   // bounding sphere (where the body's sound starts; the whole distance for the monopole); beyond

@@ -38,6 +38,7 @@ struct SolveParams {
   std::string solver_scheme = "me4";
   double solver_max_dispersion_error = 0.02;
   double kirchhoff_radius_m = 0;  // 0: no Kirchhoff surface
+  std::vector<std::array<double, 3>> kirchhoff_far_directions;
 };
 
 SolveParams parse_solve_params(const io::Config& config);
