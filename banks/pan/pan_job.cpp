@@ -91,6 +91,11 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
       if (r <= s.kirchhoff_radius_m + 2 * s.problem.grid.dx_m)
         throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {} m from the centre, inside the "
                                      "Kirchhoff surface", l + 1, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1], r));
+      const double record_s = (s.n_samples - 1 - s.i_time_zero) * s.problem.dt_s;
+      if ((r - spec.a_m) / s.problem.c_m_s >= record_s)  // it would be heard as silence
+        throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {} m from the centre, its sound "
+                                     "arrives after the record's {} s", l + 1, spec.proxies_bc_m[proxy][0],
+                                     spec.proxies_bc_m[proxy][1], r, record_s));
       s.surface_listeners_m.push_back(x);
       continue;
     }
