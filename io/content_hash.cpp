@@ -121,18 +121,4 @@ std::uint64_t content_hash(const File& file, const HashExclusions& exclude) {
   return h.value();
 }
 
-std::string hash_hex(std::uint64_t hash) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
-  return text;
-}
-
-}  // namespace clatter::io
-
-namespace clatter::io {
-std::uint64_t text_hash(const std::string& text) {
-  Fnv1a h;
-  h.bytes(text.data(), text.size());
-  return h.value();
-}
 }  // namespace clatter::io

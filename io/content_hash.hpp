@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/h5.hpp"
+#include "io/text_hash.hpp"
 
 namespace clatter::io {
 
@@ -18,10 +19,5 @@ struct HashExclusions {
 };
 
 std::uint64_t content_hash(const File& file, const HashExclusions& exclude = {});
-std::string hash_hex(std::uint64_t hash);  // 16 lowercase hex digits
 
-}  // namespace clatter::io
-
-namespace clatter::io {
-std::uint64_t text_hash(const std::string& text);  // FNV-1a 64 of the bytes
 }  // namespace clatter::io

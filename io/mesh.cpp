@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
-#include "io/content_hash.hpp"
+#include "io/text_hash.hpp"
 #include "io/text_number.hpp"
 
 namespace clatter::io {
