@@ -43,7 +43,7 @@ clatter_error_test(bad_solve_mesh_octant_asymmetric 0 "'grid.octant' = true;tetr
                    solve --set object.kind=mesh --set object.mesh=${bad}/tetrahedron.obj -o out.h5)
 clatter_error_test(bad_solve_kirchhoff_too_close 0 "'kirchhoff.radius_m' has 0.5;at least 3 cells"
                    solve --set kirchhoff.radius_m=0.5 -o out.h5)
-clatter_error_test(bad_solve_kirchhoff_listener_too_late 0 "'listeners.points_m' point 1 = [3, 0, 0];arrives there;past time.duration_s"
+clatter_error_test(bad_solve_kirchhoff_listener_too_late 0 "'listeners.points_m' point 1 = [3, 0, 0];arrives there;after the record;raise time.duration_s"
                    solve --set kirchhoff.radius_m=0.6 "--set=listeners.points_m=[[3, 0, 0]]" -o out.h5)
 clatter_error_test(bad_solve_far_without_surface 0 "'kirchhoff.far_directions' is given without a surface"
                    solve "--set=kirchhoff.far_directions=[[1, 0, 0]]" -o out.h5)

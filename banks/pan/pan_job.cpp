@@ -86,23 +86,11 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   probe.field = 1;
   for (std::size_t l = 0; l < extra_listeners_m.size(); ++l) {
     const auto& x = extra_listeners_m[l];
-    if (spec.far_field) {
-      const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-      if (r <= s.kirchhoff_radius_m + 2 * s.problem.grid.dx_m)
-        throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {} m from the centre, inside the "
-                                     "Kirchhoff surface", l + 1, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1], r));
-      const double record_s = (s.n_samples - 1 - s.i_time_zero) * s.problem.dt_s;
-      if ((r - spec.a_m) / s.problem.c_m_s >= record_s)  // it would be heard as silence
-        throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {} m from the centre, its sound "
-                                     "arrives after the record's {} s", l + 1, spec.proxies_bc_m[proxy][0],
-                                     spec.proxies_bc_m[proxy][1], r, record_s));
-      s.surface_listeners_m.push_back(x);
-      continue;
-    }
-    s.listeners_m.push_back(x);
-    if (auto why = kernels::fdtd::listener_problem(probe, x))
+    auto why = spec.far_field ? surface_listener_problem(s, x) : kernels::fdtd::listener_problem(probe, x);
+    if (why)
       throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {}", l + 1,
                                    spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1], *why));
+    (spec.far_field ? s.surface_listeners_m : s.listeners_m).push_back(x);
   }
   SolveResult raw = run_solve(comm, s, progress_interval_s);
   ProxyResult out;

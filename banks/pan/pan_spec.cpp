@@ -177,15 +177,12 @@ PanSpec make_pan_spec(const PanParams& in) {
     throw InputError(fmt::format("config: key 'fit.radii_m' has {} radii: need at least fit.terms = {}",
                                  spec.radii_m.size(), spec.terms));
   spec.far_field = in.fit_far_field;
-  if (spec.far_field)
-    for (double r : spec.radii_m)  // points of (K) must lie outside the surface (kirchhoff.hpp)
-      if (r <= kirchhoff_radius_m(spec, dx) + 2 * dx)
-        throw InputError(fmt::format("config: key 'fit.radii_m' has {}: with fit.far_field = true it must lie outside "
-                                     "the Kirchhoff surface at A + 3 cells + 2 cells = {} m",
-                                     r, kirchhoff_radius_m(spec, dx) + 2 * dx));
   spec.solve = make_solve_spec(proxy_solve_params(in, spec));  // CFL, domain and listener checks
   if (spec.far_field) {
     spec.solve.kirchhoff_radius_m = kirchhoff_radius_m(spec, dx);
+    for (double r : spec.radii_m)  // every direction alike: the check along x
+      if (auto why = surface_listener_problem(spec.solve, {r, 0.0, 0.0}))
+        throw InputError(fmt::format("config: key 'fit.radii_m' has {} (fit.far_field = true): {}", r, *why));
     spec.solve.far_directions = pan::direction_vertices(spec.divisions);
     for (const auto& d : spec.solve.far_directions)
       for (double r : spec.radii_m) spec.solve.surface_listeners_m.push_back({r * d[0], r * d[1], r * d[2]});

@@ -54,15 +54,15 @@ class Progress {
 
 // Every rank of the solve agrees every kHealthCheckSteps steps (one small allreduce, far below a
 // step's cost) on whether to go on: a SIGTERM/SIGINT stops the solve (Interrupted), and a
-// non-finite pressure at any listener (or on the Kirchhoff surface) means the scheme blew up (TaskFailure), so nobody runs on
-// to the end of a worthless solve.
+// non-finite pressure at any listener or on the Kirchhoff surface means the scheme blew up
+// (TaskFailure), so nobody runs on to the end of a worthless solve.
 constexpr int kHealthCheckSteps = 64;
 
 void check_health(MPI_Comm comm, bool finite, int n, int field) {
   // Both flags in one reduction: this runs inside the time loop.
   const std::array<int, 2> any = mpi::all_reduce_max(comm, std::array<int, 2>{interrupt_requested() ? 1 : 0, finite ? 0 : 1});
   if (any[1])
-    throw TaskFailure(fmt::format("field {}: the pressure at a listener is not finite at step {} (unstable: "
+    throw TaskFailure(fmt::format("field {}: the pressure at a listener or on the Kirchhoff surface is not finite at step {} (unstable: "
                                   "check time.dt_s against the CFL limit and the geometry)", field, n));
   if (any[0]) throw Interrupted(fmt::format("field {}: interrupted at step {}", field, n));
 }
@@ -200,6 +200,11 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
   return result;
 }
 
+namespace {
+// What a field's pressure is per: the monopole's volume acceleration, or the body's acceleration.
+std::string per_unit_drive(int field) { return field == 0 ? "(m^3/s^2)" : field <= 3 ? "(m/s^2)" : "(rad/s^2)"; }
+}  // namespace
+
 void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult& result, const io::Config& config,
                const std::string& command, int n_ranks) {
   const auto& p = spec.problem;
@@ -249,11 +254,10 @@ void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult
   io::write_attribute<double>(file, "/listeners", "kirchhoff_radius_m", spec.kirchhoff_radius_m);
   for (std::size_t f = 0; f < spec.fields.size(); ++f) {
     const int field = spec.fields[f];
-    const char* units = field == 0 ? "Pa/(m^3/s^2)" : field <= 3 ? "Pa/(m/s^2)" : "Pa/(rad/s^2)";
     std::vector<float> all = result.series[f];
     for (const auto& heard : result.surface_series[f])
       for (hsize_t k = 0; k < ns; ++k) all.push_back(static_cast<float>(heard.value[k]));
-    io::write_dataset<float>(file, "/fields/p" + std::to_string(field), all, {np, ns}, units);
+    io::write_dataset<float>(file, "/fields/p" + std::to_string(field), all, {np, ns}, "Pa/" + per_unit_drive(field));
   }
   if (!spec.far_directions.empty()) {
     // The far field R p against tau = t - R/c, on the solve's step, starting before its record.
@@ -264,12 +268,11 @@ void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult
     io::write_attribute<double>(file, "/far", "tau_first_s", result.far.front().front().t_first_s);
     for (std::size_t f = 0; f < spec.fields.size(); ++f) {
       const int field = spec.fields[f];
-      const char* units = field == 0 ? "Pa m/(m^3/s^2)" : field <= 3 ? "Pa m/(m/s^2)" : "Pa m/(rad/s^2)";
       std::vector<float> all;
       for (const auto& s : result.far[f]) {
         for (hsize_t k = 0; k < nf; ++k) all.push_back(static_cast<float>(k < static_cast<hsize_t>(s.valid_end) ? s.value[k] : 0.0));
       }
-      io::write_dataset<float>(file, "/far/p" + std::to_string(field), all, {nd, nf}, units);
+      io::write_dataset<float>(file, "/far/p" + std::to_string(field), all, {nd, nf}, "Pa m/" + per_unit_drive(field));
     }
   }
   io::write_provenance(file, command, config.to_toml(), n_ranks);

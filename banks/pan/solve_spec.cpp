@@ -201,16 +201,14 @@ SolveSpec make_solve_spec(const SolveParams& in) {
                                    "need {} m, the grid has {} m inside the layer (grid.half_width_m)", rs, rs + 3 * dx, room_m));
     spec.kirchhoff_radius_m = rs;
   }
+  spec.i_time_zero = static_cast<int>(std::ceil(2.0 * p.h_s / p.dt_s - 1e-9));
+  spec.n_samples = spec.i_time_zero + static_cast<int>(std::ceil(in.time_duration_s / p.dt_s)) + 1;
   for (std::size_t l = 0; l < in.listeners_points_m.size(); ++l) {
     const auto& x = in.listeners_points_m[l];
-    const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-    if (rs > 0 && r > rs + 2 * dx) {  // outside the surface: heard through it
-      // The record must reach the sound's arrival there, or the series would be silently empty.
-      const double arrival_s = (r - body_radius) / p.c_m_s;
-      if (arrival_s >= in.time_duration_s)
-        throw InputError(fmt::format("config: key 'listeners.points_m' point {} = [{}, {}, {}]: the sound arrives there "
-                                     "{:.4g} s after the pulse, past time.duration_s = {}: raise it or use "
-                                     "kirchhoff.far_directions", l + 1, x[0], x[1], x[2], arrival_s, in.time_duration_s));
+    if (rs > 0 && std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) > surface_outside_m(spec)) {
+      if (auto why = surface_listener_problem(spec, x))
+        throw InputError(fmt::format("config: key 'listeners.points_m' point {} = [{}, {}, {}]: {}: raise "
+                                     "time.duration_s or use kirchhoff.far_directions", l + 1, x[0], x[1], x[2], *why));
       spec.surface_listeners_m.push_back(x);
       continue;
     }
@@ -235,13 +233,27 @@ SolveSpec make_solve_spec(const SolveParams& in) {
   // the Kirchhoff surface the sound travels exactly, so only the grid's part counts.
   for (const auto& x : spec.listeners_m)
     spec.farthest_m = std::max(spec.farthest_m, std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - body_radius);
-  if (!spec.surface_listeners_m.empty()) spec.farthest_m = std::max(spec.farthest_m, rs + 2 * dx - body_radius);
+  if (!spec.surface_listeners_m.empty()) spec.farthest_m = std::max(spec.farthest_m, surface_outside_m(spec) - body_radius);
   spec.band_edge_hz = fdtd::pulse_band_edge_hz(p.h_s);
   spec.predicted_error = fdtd::worst_dispersion_error(p.scheme, p.courant(), dx, p.c_m_s, p.h_s, spec.farthest_m);
   spec.max_dispersion_error = in.solver_max_dispersion_error;
-  spec.i_time_zero = static_cast<int>(std::ceil(2.0 * p.h_s / p.dt_s - 1e-9));
-  spec.n_samples = spec.i_time_zero + static_cast<int>(std::ceil(in.time_duration_s / p.dt_s)) + 1;
   return spec;
+}
+
+double surface_outside_m(const SolveSpec& spec) { return spec.kirchhoff_radius_m + 2 * spec.problem.grid.dx_m; }
+
+std::optional<std::string> surface_listener_problem(const SolveSpec& spec, const std::array<double, 3>& x) {
+  const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+  if (r <= surface_outside_m(spec))
+    return fmt::format("{:.4g} m from the centre, not beyond the Kirchhoff surface (radius {} m + 2 cells = {:.4g} m)", r,
+                       spec.kirchhoff_radius_m, surface_outside_m(spec));
+  const bool monopole = spec.fields.size() == 1 && spec.fields.front() == 0;
+  const double body_radius = monopole ? 0.0 : spec.problem.solid().bounding_radius_m();
+  const double arrival_s = (r - body_radius) / spec.problem.c_m_s;
+  const double record_s = (spec.n_samples - 1 - spec.i_time_zero) * spec.problem.dt_s;
+  if (arrival_s >= record_s)
+    return fmt::format("the sound arrives there {:.4g} s after the pulse, after the record's {:.4g} s", arrival_s, record_s);
+  return std::nullopt;
 }
 
 }  // namespace clatter::jobs

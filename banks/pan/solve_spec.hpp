@@ -4,6 +4,7 @@
 // a PAN sweep) runs from. Parsing (config -> SolveParams) is apart from validation (SolveParams ->
 // SolveSpec), so a PAN sweep builds its solve's parameters as a struct.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,13 @@ struct SolveSpec {
   std::string mesh_path, mesh_hash;
   double mesh_scale = 1;
 };
+
+// The Kirchhoff surface's rule for a point x (spec.kirchhoff_radius_m > 0): heard through the
+// surface when beyond surface_outside_m (the faces reach radius + dx / sqrt 2, kernels/fdtd/kirchhoff.hpp;
+// one cell more to spare); and refused when its sound would arrive after the record ends (it
+// would be heard as silence). The reason, or nullopt where x can be heard.
+double surface_outside_m(const SolveSpec& spec);
+std::optional<std::string> surface_listener_problem(const SolveSpec& spec, const std::array<double, 3>& x);
 
 // Throws InputError naming the key and value for any invalid combination.
 SolveSpec make_solve_spec(const SolveParams& params);

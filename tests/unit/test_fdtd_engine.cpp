@@ -241,26 +241,34 @@ void mirror_ghosts(const fdtd::Problem& problem, const fdtd::Layout& layout, std
         }
 }
 
+// A monopole problem's operator and engine on one block, p^n random everywhere (halo, PML and
+// ghosts included): where the naive-loop tests below start.
+struct RandomStart {
+  fdtd::FlushSubnormals flush;
+  fdtd::Operator op;
+  NoHaloExchange halo;
+  fdtd::Engine engine;
+  RandomStart(const fdtd::Problem& p, std::uint32_t state) : op(p, p.grid.all()), engine(op, halo) {
+    auto* now = const_cast<float*>(engine.pressure());  // the test seeds the field it steps
+    for (std::size_t x = 0; x < op.layout().size(); ++x) {
+      state = state * 1664525u + 1013904223u;
+      now[x] = static_cast<float>(state >> 8) / 16777216.0f - 0.5f;
+    }
+  }
+};
+
 // Steps a monopole problem from random p^n and p^{n-1} with the Engine and compares every bulk
 // cell (the point source's cells aside) bit for bit with naive_me4_bulk after each step.
 void expect_me4_bulk_matches_naive(const fdtd::Problem& p, bool all_blended = false) {
   ASSERT_EQ(p.scheme, fdtd::Scheme::me4);
   ASSERT_EQ(p.field, 0);
   for (int a = 0; a < 3; ++a) ASSERT_EQ(fdtd::field_parity(0, a), 1);
-  const fdtd::FlushSubnormals flush;
-  const fdtd::Operator op(p, p.grid.all());
-  NoHaloExchange halo;
-  fdtd::Engine engine(op, halo);
+  RandomStart start(p, 12345u);  // one step makes the random p^n p^{n-1}
+  const fdtd::Operator& op = start.op;
+  fdtd::Engine& engine = start.engine;
   const fdtd::Layout& layout = op.layout();
   const std::size_t size = layout.size();
-  // Random p^n everywhere (halo, PML and ghosts included); one step makes it p^{n-1}.
-  std::uint32_t state = 12345;
-  auto* now = const_cast<float*>(engine.pressure());  // the test seeds the field it steps
-  for (std::size_t x = 0; x < size; ++x) {
-    state = state * 1664525u + 1013904223u;
-    now[x] = static_cast<float>(state >> 8) / 16777216.0f - 0.5f;
-  }
-  std::vector<float> old(now, now + size);
+  std::vector<float> old(engine.pressure(), engine.pressure() + size);
   const double dt = p.dt_s;
   engine.step(-2 * p.h_s);
   std::vector<bool> skip(size, false);
@@ -434,18 +442,11 @@ class NaivePml {
 // bit for bit with NaivePml after each step (the layer's state evolving in both).
 void expect_pml_matches_naive(const fdtd::Problem& p) {
   ASSERT_EQ(p.field, 0);
-  const fdtd::FlushSubnormals flush;
-  const fdtd::Operator op(p, p.grid.all());
-  NoHaloExchange halo;
-  fdtd::Engine engine(op, halo);
+  RandomStart start(p, 987654u);
+  const fdtd::Operator& op = start.op;
+  fdtd::Engine& engine = start.engine;
   const fdtd::Layout& layout = op.layout();
   const std::size_t size = layout.size();
-  std::uint32_t state = 987654u;
-  auto* now = const_cast<float*>(engine.pressure());  // the test seeds the field it steps
-  for (std::size_t x = 0; x < size; ++x) {
-    state = state * 1664525u + 1013904223u;
-    now[x] = static_cast<float>(state >> 8) / 16777216.0f - 0.5f;
-  }
   NaivePml naive(p, layout);
   std::vector<float> old(size, 0.0f);  // the Engine starts at rest: p^{n-1} = 0
   long long compared = 0;
