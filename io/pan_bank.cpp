@@ -30,7 +30,7 @@ struct PackedCoefficients {
 
 PackedCoefficients pack_coefficients(const PanBank& bank) {
   const PanBankHeader& h = bank.header;
-  const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms);
+  const std::size_t n_dirs = h.directions.size(), n_values = h.values();
   PackedCoefficients out;
   auto& [solved, delays, offsets, delta, quantized, scale] = out;
   for (const auto& proxy : bank.proxies) {
@@ -44,18 +44,20 @@ PackedCoefficients pack_coefficients(const PanBank& bank) {
         for (std::size_t e = 0; e < t.index.size(); ++e)
           delta.push_back(static_cast<std::uint16_t>(e == 0 ? t.index[e] : t.index[e] - t.index[e - 1]));
         offsets.push_back(static_cast<std::uint32_t>(delta.size()));
-        for (std::size_t k = 0; k < n_terms; ++k) {
-          float m = 0;
-          for (std::size_t e = 0; e < t.index.size(); ++e) m = std::max(m, std::abs(t.value[e * n_terms + k]));
-          // Quantization step matched to the fit: coefficients under epsilon * max were dropped, so
-          // a step of epsilon * max / 16 (error <= epsilon * max / 32) adds little, and small
-          // integers deflate well. The 16-bit range bounds the step from below.
-          scale.push_back(std::max(m / 32767.0f, static_cast<float>(h.epsilon) * m / 16.0f));
-        }
-        const float* sc = &scale[scale.size() - n_terms];
+        // Quantization step matched to the fit: coefficients under epsilon * max were dropped, so
+        // a step of epsilon * max / 16 (error <= epsilon * max / 32) adds little, and small
+        // integers deflate well. A residual's step follows the larger of its own and the far
+        // field's peak: it is an error in R p = F + D, and residuals far out are small beside F
+        // (mostly zeros after rounding). The 16-bit range bounds the step from below.
+        std::vector<float> peak(n_values, 0.0f);
+        for (std::size_t k = 0; k < n_values; ++k)
+          for (std::size_t e = 0; e < t.index.size(); ++e) peak[k] = std::max(peak[k], std::abs(t.value[e * n_values + k]));
+        for (std::size_t k = 0; k < n_values; ++k)
+          scale.push_back(std::max(peak[k] / 32767.0f, static_cast<float>(h.epsilon) * std::max(peak[k], peak[0]) / 16.0f));
+        const float* sc = &scale[scale.size() - n_values];
         for (std::size_t e = 0; e < t.index.size(); ++e)
-          for (std::size_t k = 0; k < n_terms; ++k)
-            quantized.push_back(static_cast<std::int16_t>(sc[k] > 0 ? std::lround(t.value[e * n_terms + k] / sc[k]) : 0));
+          for (std::size_t k = 0; k < n_values; ++k)
+            quantized.push_back(static_cast<std::int16_t>(sc[k] > 0 ? std::lround(t.value[e * n_values + k] / sc[k]) : 0));
       }
     }
   }
@@ -81,7 +83,9 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
                                                                  "sample n is at retarded time t - R/c = t_first_s + n dt_s"));
   write_attribute<double>(file, "/bank", "epsilon", h.epsilon);
   write_attribute<double>(file, "/bank", "a_m", h.a_m);
-  write_attribute<std::int32_t>(file, "/bank", "terms", h.terms);
+  write_attribute(file, "/bank", "radial_model",
+                  std::string_view("per coefficient: F (the far field, lim R p), then D_i = R_i p(R_i) - F per radius; "
+                                   "R p cubic in 1/R through the four nodes around it, F at 1/R = 0"));
   write_attribute<std::uint32_t>(file, "/bank", "length", h.length);
   write_attribute(file, "/bank", "wavelet", std::string_view("GSL gsl_wavelet_daubechies, member 10 (5 vanishing "
                                                              "moments), periodic, packed ordering"));
@@ -102,7 +106,7 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
 
   // All coefficients in one compressed CSR: rows are (proxy, field, direction) in that order, so
   // a bank is a handful of datasets however many proxies it holds (HDF5 objects cost ~1-2 KB each).
-  const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms);
+  const std::size_t n_dirs = h.directions.size(), n_values = h.values();
   const std::size_t n_proxies = bank.proxies.size();
   const PackedCoefficients packed = pack_coefficients(bank);
   const auto& [solved, delays, offsets, delta, quantized, scale] = packed;
@@ -110,15 +114,15 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
   write_dataset<std::uint8_t>(file, "/coefficients/solved", solved, {n_proxies, 6}, "1", true);
   write_dataset<std::uint32_t>(file, "/coefficients/offsets", offsets, {offsets.size()}, "1", true);
   write_dataset<std::uint16_t>(file, "/coefficients/index_delta", delta, {delta.size()}, "1", true);
-  write_dataset<std::int16_t>(file, "/coefficients/values", quantized, {delta.size(), n_terms}, "1", true);
-  write_dataset<float>(file, "/coefficients/scale", scale, {n_proxies, 6, n_dirs, n_terms}, "Pa m^k per unit acceleration",
+  write_dataset<std::int16_t>(file, "/coefficients/values", quantized, {delta.size(), n_values}, "1", true);
+  write_dataset<float>(file, "/coefficients/scale", scale, {n_proxies, 6, n_dirs, n_values}, "Pa m per unit acceleration",
                        true);
   write_sweep_status(file, bank.sweep);
   write_provenance(file, command, config_toml, n_ranks);
   file.commit();
 }
 
-void write_pan_task(File& file, const std::string& group, const PanTaskResult& task, int terms) {
+void write_pan_task(File& file, const std::string& group, const PanTaskResult& task, std::size_t n_values) {
   create_group(file, group);
   write_attribute<std::uint32_t>(file, group, "proxy", task.proxy);
   write_attribute<double>(file, group, "b_m", task.b_m);
@@ -131,14 +135,13 @@ void write_pan_task(File& file, const std::string& group, const PanTaskResult& t
     values.insert(values.end(), d.value.begin(), d.value.end());
     offsets.push_back(static_cast<std::uint32_t>(index.size()));
   }
-  const auto n_terms = static_cast<std::size_t>(terms);
   write_dataset<std::uint32_t>(file, group + "/offsets", offsets, {offsets.size()}, "1", true);
   write_dataset<std::uint32_t>(file, group + "/index", index, {index.size()}, "1", true);
-  write_dataset<float>(file, group + "/values", values, {index.size(), n_terms}, "Pa m^k per unit acceleration", true);
+  write_dataset<float>(file, group + "/values", values, {index.size(), n_values}, "Pa m per unit acceleration", true);
 }
 
-PanTaskResult read_pan_task(const File& file, const std::string& group, int terms, std::size_t n_directions,
-                            std::uint32_t length) {
+PanTaskResult read_pan_task(const File& file, const std::string& group, std::size_t n_values,
+                            std::size_t n_directions, std::uint32_t length) {
   PanTaskResult t;
   t.proxy = read_attribute<std::uint32_t>(file, group, "proxy");
   t.b_m = read_attribute<double>(file, group, "b_m");
@@ -147,9 +150,8 @@ PanTaskResult read_pan_task(const File& file, const std::string& group, int term
   auto offsets = read_dataset<std::uint32_t>(file, group + "/offsets", {static_cast<long long>(n_directions) + 1}, "1");
   Dims n;
   auto index = read_dataset<std::uint32_t>(file, group + "/index", {-1}, "1", &n);
-  auto values = read_dataset<float>(file, group + "/values", {static_cast<long long>(n[0]), terms},
-                                    "Pa m^k per unit acceleration");
-  const auto n_terms = static_cast<std::size_t>(terms);
+  auto values = read_dataset<float>(file, group + "/values", {static_cast<long long>(n[0]), static_cast<long long>(n_values)},
+                                    "Pa m per unit acceleration");
   for (std::size_t d = 0; d < n_directions; ++d) {
     if (offsets[d] > offsets[d + 1] || offsets[d + 1] > index.size())
       throw InputError(file.path() + ": '" + group + "/offsets' is not a partition of the coefficients");
@@ -158,7 +160,7 @@ PanTaskResult read_pan_task(const File& file, const std::string& group, int term
       if (index[e] >= length || (e > offsets[d] && index[e] <= index[e - 1]))
         throw InputError(file.path() + ": '" + group + "/index' is out of range or not ascending");
       terms_d.index.push_back(index[e]);
-      for (std::size_t k = 0; k < n_terms; ++k) terms_d.value.push_back(values[e * n_terms + k]);
+      for (std::size_t k = 0; k < n_values; ++k) terms_d.value.push_back(values[e * n_values + k]);
     }
     t.directions.push_back(std::move(terms_d));
   }
@@ -177,11 +179,14 @@ PanBank read_pan_bank(const std::string& path) {
   h.t_first_s = read_attribute<double>(file, "/bank", "t_first_s");
   h.epsilon = read_attribute<double>(file, "/bank", "epsilon");
   h.a_m = read_attribute<double>(file, "/bank", "a_m");
-  h.terms = read_attribute<std::int32_t>(file, "/bank", "terms");
   h.length = read_attribute<std::uint32_t>(file, "/bank", "length");
-  if (h.terms < 1 || h.length < 2 || (h.length & (h.length - 1)) != 0 || !(h.dt_s > 0))
-    throw InputError(path + ": /bank attributes terms, length or dt_s out of range");
+  if (h.length < 2 || (h.length & (h.length - 1)) != 0 || !(h.dt_s > 0))
+    throw InputError(path + ": /bank attributes length or dt_s out of range");
   h.radii_m = read_dataset<double>(file, "/bank/radii_m", {-1}, "m");
+  for (std::size_t i = 0; i < h.radii_m.size(); ++i)  // the radial model's nodes (kernels/pan/radial.hpp)
+    if (!(h.radii_m[i] > 0 && std::isfinite(h.radii_m[i])) || (i > 0 && !(h.radii_m[i] > h.radii_m[i - 1])))
+      throw InputError(path + ": '/bank/radii_m' must be positive, finite and ascending (entry " + std::to_string(i) +
+                       " is " + std::to_string(h.radii_m[i]) + ")");
   auto dirs = read_dataset<double>(file, "/bank/directions", {-1, 3}, "1");
   for (std::size_t i = 0; i + 2 < dirs.size(); i += 3) h.directions.push_back({dirs[i], dirs[i + 1], dirs[i + 2]});
   auto tris = read_dataset<std::int32_t>(file, "/bank/triangles", {-1, 3}, "1");
@@ -189,15 +194,15 @@ PanBank read_pan_bank(const std::string& path) {
   Dims nb;
   auto b = read_dataset<double>(file, "/proxies/b_m", {-1}, "m", &nb);
   auto c = read_dataset<double>(file, "/proxies/c_m", {static_cast<long long>(nb[0])}, "m");
-  const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms), np = b.size();
-  const auto nd = static_cast<long long>(n_dirs), nt = static_cast<long long>(n_terms), npl = static_cast<long long>(np);
+  const std::size_t n_dirs = h.directions.size(), n_values = h.values(), np = b.size();
+  const auto nd = static_cast<long long>(n_dirs), nv = static_cast<long long>(n_values), npl = static_cast<long long>(np);
   auto delays = read_dataset<std::int32_t>(file, "/proxies/delay_steps", {npl, nd}, "1");
   auto solved = read_dataset<std::uint8_t>(file, "/coefficients/solved", {npl, 6}, "1");
   auto offsets = read_dataset<std::uint32_t>(file, "/coefficients/offsets", {npl * 6 * nd + 1}, "1");
   Dims nnz;
   auto delta = read_dataset<std::uint16_t>(file, "/coefficients/index_delta", {-1}, "1", &nnz);
-  auto values = read_dataset<std::int16_t>(file, "/coefficients/values", {static_cast<long long>(nnz[0]), nt}, "1");
-  auto scale = read_dataset<float>(file, "/coefficients/scale", {npl, 6, nd, nt}, "Pa m^k per unit acceleration");
+  auto values = read_dataset<std::int16_t>(file, "/coefficients/values", {static_cast<long long>(nnz[0]), nv}, "1");
+  auto scale = read_dataset<float>(file, "/coefficients/scale", {npl, 6, nd, nv}, "Pa m per unit acceleration");
   for (std::size_t p = 0; p < np; ++p) {
     PanProxy proxy;
     proxy.b_m = b[p];
@@ -221,8 +226,8 @@ PanBank read_pan_bank(const std::string& path) {
             throw InputError(path + ": '/coefficients/index_delta' gives coefficient index " + std::to_string(j) +
                              " outside [0, " + std::to_string(h.length) + ") or repeated");
           out[d].index.push_back(j);
-          for (std::size_t k = 0; k < n_terms; ++k)
-            out[d].value.push_back(static_cast<float>(values[e * n_terms + k]) * scale[row * n_terms + k]);
+          for (std::size_t k = 0; k < n_values; ++k)
+            out[d].value.push_back(static_cast<float>(values[e * n_values + k]) * scale[row * n_values + k]);
         }
       }
     }
@@ -234,11 +239,11 @@ PanBank read_pan_bank(const std::string& path) {
 
 std::size_t pan_coefficient_bytes(const PanBank& bank) {
   std::size_t bytes = 0;
-  const std::size_t n_terms = static_cast<std::size_t>(bank.header.terms);
+  const std::size_t n_values = bank.header.values();
   for (const auto& p : bank.proxies)
     for (const auto& f : p.fields) {
-      bytes += (f.size() + 1) * 4 + f.size() * n_terms * 4;  // offsets, scales
-      for (const auto& d : f) bytes += d.index.size() * (2 + 2 * n_terms);
+      bytes += (f.size() + 1) * 4 + f.size() * n_values * 4;  // offsets, scales
+      for (const auto& d : f) bytes += d.index.size() * (2 + 2 * n_values);
     }
   return bytes;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // The PAN soundbank file (format "clatter-pan-bank", docs/bank-format.md): per proxy ellipsoid
-// (A, B, C) and rigid-body field, the sparse wavelet coefficients of q_1..q_N in each of the 45
-// octant directions. The data is model::PanBank (model/pan_bank.hpp); the numerics live in
+// (A, B, C) and rigid-body field, the sparse wavelet coefficients of the radial model (the far
+// field and the residual at each stored radius, kernels/pan/radial.hpp) in each octant direction. The data is model::PanBank (model/pan_bank.hpp); the numerics live in
 // kernels/pan.
 #include <cstddef>
 #include <cstdint>
@@ -13,9 +13,9 @@
 namespace clatter::io {
 
 inline constexpr const char* kPanBankFormat = "clatter-pan-bank";
-inline constexpr int kPanBankFormatVersion = 2;
+inline constexpr int kPanBankFormatVersion = 3;  // 3: the radial model replaced the series (8)
 
-// Writes atomically (temporary + rename); coefficients quantized to 16 bits per (direction, term)
+// Writes atomically (temporary + rename); coefficients quantized to 16 bits per (direction, value)
 // scale, indices delta-coded, every dataset shuffled, deflated and Fletcher-32 checksummed.
 void write_pan_bank(const std::string& path, const model::PanBank& bank, const std::string& command,
                     const std::string& config_toml, int n_ranks);
@@ -27,9 +27,10 @@ model::PanBank read_pan_bank(const std::string& path);
 
 // The payload of a task file under group `group` (the sweep engine owns the file). read_pan_task
 // checks every shape against the header.
-void write_pan_task(File& file, const std::string& group, const model::PanTaskResult& task, int terms);
-model::PanTaskResult read_pan_task(const File& file, const std::string& group, int terms, std::size_t n_directions,
-                                   std::uint32_t length);
+// `values` per kept coefficient: PanBankHeader::values().
+void write_pan_task(File& file, const std::string& group, const model::PanTaskResult& task, std::size_t values);
+model::PanTaskResult read_pan_task(const File& file, const std::string& group, std::size_t values,
+                                   std::size_t n_directions, std::uint32_t length);
 
 // Bytes of coefficient data (indices, values, scales) as stored before compression.
 std::size_t pan_coefficient_bytes(const model::PanBank& bank);

@@ -12,24 +12,27 @@
 
 namespace clatter::model {
 
-// Sparse wavelet coefficients of q_1..q_N in one direction of one field.
+// Sparse wavelet coefficients of one direction of one field: per kept coefficient j, the radial
+// model's values (kernels/pan/radial.hpp), the far field F^j and the residuals R_i p^j(R_i) - F^j.
 struct SparseTerms {
   std::vector<std::uint32_t> index;  // kept coefficient j, ascending
-  std::vector<float> value;          // [index.size()][N]: q^_1^j .. q^_N^j
+  std::vector<float> value;          // [index.size()][M + 1]: F^j, D_1^j .. D_M^j
 };
 
 // What every proxy of a bank shares.
 struct PanBankHeader {
   double c_m_s = 0, rho_kg_m3 = 0, h_s = 0;
-  double dt_s = 0;           // sample interval of q_k (1 / sample rate)
+  double dt_s = 0;           // sample interval of the stored series (1 / sample rate)
   double t_first_s = 0;      // retarded time t - R/c of sample 0; t = 0 is the centre of psi
   double epsilon = 0;        // compression threshold of the fit
   double a_m = 0.5;          // semi-axis A shared by every proxy
-  int terms = 0;             // N
   std::uint32_t length = 0;  // T, wavelet length (a power of two)
-  std::vector<double> radii_m;                         // the M fitted radii
+  std::vector<double> radii_m;                         // the M stored radii, ascending
   std::vector<std::array<double, 3>> directions;       // octant direction vertices (45)
   std::vector<std::array<std::int32_t, 3>> triangles;  // their triangles (64)
+
+  // Values per kept coefficient: the far field and one residual per radius.
+  std::size_t values() const { return radii_m.size() + 1; }
 };
 
 // One proxy ellipsoid (A, B, C): per field 1..6, one SparseTerms per direction, or none when the

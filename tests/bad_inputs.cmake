@@ -30,9 +30,10 @@ clatter_error_test(bad_solve_no_listeners 0 "'listeners.points_m' is empty" solv
 clatter_error_test(bad_pan_proxy_order 0 "'proxies.list_m' proxy 1 = [0.2, 0.3];C <= B <= A = 0.5"
                    pan "--set=proxies.list_m=[[0.2, 0.3]]" -o out.h5)
 clatter_error_test(bad_pan_odd_divisions 0 "'fit.divisions' has 7;must be even" pan --set fit.divisions=7 -o out.h5)
-clatter_error_test(bad_pan_radius_inside 0 "'fit.radii_m' has 0.51;outside the bounding sphere (A = 0.5 m) by two cells"
+clatter_error_test(bad_pan_radius_inside 0 "'fit.radii_m' has 0.51: 0.5112 m from the centre, not beyond the Kirchhoff surface (radius 0.5195 m + 2 cells = 0.5325 m)"
                    pan "--set=fit.radii_m=[0.51, 1.0]" -o out.h5)
-clatter_error_test(bad_pan_too_few_radii 0 "'fit.radii_m' has 1 radii;at least fit.terms = 2" pan "--set=fit.radii_m=[1.0]" -o out.h5)
+clatter_error_test(bad_pan_radii_order 0 "'fit.radii_m' has 0.8 after 1.001: the radii must ascend" pan "--set=fit.radii_m=[1.0, 0.8]" -o out.h5)
+clatter_error_test(bad_pan_removed_key 0 "--set 'fit.terms=2': unknown key 'fit.terms'" pan "--set=fit.terms=2" -o out.h5)
 clatter_error_test(bad_pan_cfl_np2 2 "'time.dt_s' = 0.0001;CFL limit" pan --set grid.dx_m=0.01 --set time.dt_s=1e-4 -o out.h5)
 clatter_error_test(bad_solve_scheme 0 "--set 'solver.scheme=iwb';'solver.scheme' = 'iwb';must be one of me4, srl"
                    solve --set solver.scheme=iwb -o out.h5)
@@ -166,7 +167,7 @@ foreach(case
     "truncated|truncated.h5: not a readable HDF5 file"
     "no_format|no_format.h5: not a Clatter file (no 'format' attribute)|expected format 'clatter-pan-bank'"
     "wrong_format|wrong_format.h5: format 'clatter-fdtd-raw', expected 'clatter-pan-bank'"
-    "wrong_version|wrong_version.h5: format 'clatter-pan-bank' version 1, this build reads version 2"
+    "wrong_version|wrong_version.h5: format 'clatter-pan-bank' version 1, this build reads version 3"
     "wrong_shape|wrong_shape.h5: dataset '/proxies/c_m': expected float64 [2] in 'm', found float64 [1]"
     "corrupt|corrupt.h5: dataset '/coefficients/values' cannot be read: corrupt or truncated file"
     "index_out_of_range|index_out_of_range.h5: '/coefficients/index_delta' gives coefficient index 512 outside [0, 512)")
@@ -176,7 +177,7 @@ foreach(case
   set_tests_properties(bad_bank_${file} PROPERTIES FIXTURES_REQUIRED "pan_bank;bad_banks")
 endforeach()
 clatter_error_test(bad_bank_info_corrupt 0 "corrupt.h5;cannot be read: corrupt or truncated file" info ${bad_banks}/corrupt.h5)
-clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads version 2" info ${bad_banks}/wrong_version.h5)
+clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads version 3" info ${bad_banks}/wrong_version.h5)
 clatter_error_test(bad_bank_info_wrong_format 0 "wrong_format.h5: format 'clatter-fdtd-raw' is not a bank's;clatter-pan-bank, clatter-modal-bank, clatter-object-bank, clatter-ground-bank"
                    info ${bad_banks}/wrong_format.h5)
 clatter_error_test(bad_bank_info_no_format 0 "no_format.h5: not a Clatter file (no 'format' attribute);expected a bank"

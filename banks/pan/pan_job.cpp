@@ -27,8 +27,8 @@ TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task
   r.c_m = result.proxy.c_m;
   r.field = task.field;
   r.directions = std::move(result.proxy.fields[static_cast<std::size_t>(task.field - 1)]);
-  return [r = std::move(r), terms = spec.terms](io::File& file, const std::string& group_name) {
-    io::write_pan_task(file, group_name, r, terms);
+  return [r = std::move(r), values = spec.radii_m.size() + 1](io::File& file, const std::string& group_name) {
+    io::write_pan_task(file, group_name, r, values);
   };
 }
 
@@ -50,7 +50,7 @@ model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results
                                           spec.proxies_bc_m[t.proxy][1], t.field);
     if (!task_done(results_dir, t.name, label, config_toml, bank.sweep)) continue;
     auto file = io::File::open(io::task_path(results_dir, t.name));
-    auto r = io::read_pan_task(file, "/result", spec.terms, bank.header.directions.size(), spec.length);
+    auto r = io::read_pan_task(file, "/result", bank.header.values(), bank.header.directions.size(), spec.length);
     if (r.proxy != t.proxy || r.field != t.field)
       throw InputError(fmt::format("{}: holds proxy {} field {}, expected {} field {}", file.path(), r.proxy, r.field,
                                    t.proxy, t.field));
@@ -80,17 +80,14 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                         const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s) {
   SolveSpec s = spec.solve;
   s.problem.body = {spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1]};
-  // make_pan_spec checked the fitted listeners; the extra ones are new. With the far field they are
-  // heard through the Kirchhoff surface, anywhere outside it; without it, on the grid.
-  auto probe = s.problem;
-  probe.field = 1;
+  // make_pan_spec checked the fitted listeners; the extra ones are new, heard through the
+  // Kirchhoff surface like them, anywhere outside it.
   for (std::size_t l = 0; l < extra_listeners_m.size(); ++l) {
     const auto& x = extra_listeners_m[l];
-    auto why = spec.far_field ? surface_listener_problem(s, x) : kernels::fdtd::listener_problem(probe, x);
-    if (why)
+    if (auto why = surface_listener_problem(s, x))
       throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {}", l + 1,
                                    spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1], *why));
-    (spec.far_field ? s.surface_listeners_m : s.listeners_m).push_back(x);
+    s.surface_listeners_m.push_back(x);
   }
   SolveResult raw = run_solve(comm, s, progress_interval_s);
   ProxyResult out;
@@ -102,20 +99,11 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   out.proxy.delay_steps = proxy_delay_steps(spec, proxy);
   std::vector<int> shifts;
   for (int k : spec.shift_steps) shifts.push_back(k - spec.lead_steps);
-  const pan::Fitter fitter(spec.radii_m, shifts, spec.terms, spec.length);
+  const pan::Fitter fitter(spec.radii_m, shifts, spec.length);
   const std::size_t ns = static_cast<std::size_t>(s.n_samples), m = spec.radii_m.size();
   const std::size_t n_fitted = directions.size() * m;
   for (std::size_t f = 0; f < s.fields.size(); ++f) {
     auto& dirs = out.proxy.fields[static_cast<std::size_t>(s.fields[f] - 1)];
-    if (!spec.far_field) {
-      for (std::size_t d = 0; d < directions.size(); ++d) {
-        std::vector<const float*> series;
-        for (std::size_t i = 0; i < m; ++i) series.push_back(raw.series[f].data() + (d * m + i) * ns);
-        dirs.push_back(fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d]));
-      }
-      out.extra_series.emplace_back(raw.series[f].begin() + static_cast<std::ptrdiff_t>(n_fitted * ns), raw.series[f].end());
-      continue;
-    }
     // Every series through the surface, on the solve's own samples.
     const auto& heard = raw.surface_series[f];
     std::vector<float> near(heard.size() * ns);
@@ -125,7 +113,7 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
       std::vector<const float*> series;
       for (std::size_t i = 0; i < m; ++i) series.push_back(near.data() + (d * m + i) * ns);
       const auto far = aligned_far_field(spec, raw.far[f][d], out.proxy.delay_steps[d]);
-      dirs.push_back(fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d], &far));
+      dirs.push_back(fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d], far));
     }
     out.extra_series.emplace_back(near.begin() + static_cast<std::ptrdiff_t>(n_fitted * ns), near.end());
   }

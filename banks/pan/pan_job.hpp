@@ -1,7 +1,8 @@
 #pragma once
 // `clatter-bank pan`: the PAN proxy bank (Chadwick et al. 2012, sections 4-5). For each proxy
-// ellipsoid (A, B, C): octant FDTD solves of the 6 rigid-body fields recorded at 45 directions x M
-// radii, the wavelet fit of each direction, and the compressed bank file (io/pan_bank.hpp).
+// ellipsoid (A, B, C): octant FDTD solves of the 6 rigid-body fields heard through a Kirchhoff
+// surface at 45 directions x M radii and at infinity (the far field), the radial model's wavelet
+// coefficients of each direction (kernels/pan/fit.hpp), and the compressed bank file (io/pan_bank.hpp).
 #include <mpi.h>
 
 #include <array>

@@ -14,29 +14,43 @@ namespace {
 struct Calibration {
   double rate = 0;            // cell-updates/s per rank, wall time of a whole solve (setup included)
   double bytes_per_cell = 0;
+  double surface_s = 0;       // rank 0's seconds per series-sample heard through the Kirchhoff surface
   std::string how;
 };
 
-// A small solve with the sweep's own physics and cell size: the body's bounding sphere plus a few
-// cells, so the per-cell costs (bulk, cut cells, layer) resemble a task's.
+// A small solve with the sweep's own physics, cell size and Kirchhoff surface: the body's bounding
+// sphere plus a few cells, so the per-cell costs (bulk, cut cells, layer) resemble a task's. Solved
+// twice, with and without its listeners through the surface, for the cost of each (a task hears
+// directions x (radii + 1) series, a cost that grows with the record, not the grid).
 Calibration calibrate(const io::Config& config, double given_rate) {
   PanParams small = parse_pan_params(config);
   const double dx = small.grid_dx_m, a = small.proxies_a_m;
-  small.fit_radii_m = {a + 2.5 * dx, a + 3 * dx};
-  small.fit_terms = 1;
+  small.fit_radii_m = {a + 6 * dx, a + 7 * dx};
   small.time_tail_s = 64 * small.time_dt_s;
   small.solve_fields = {1};
   const PanSpec spec = make_pan_spec(small);
+  auto timed = [](const SolveSpec& s, SolveResult& r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    r = run_solve(MPI_COMM_SELF, s, 0);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  SolveResult r;
+  SolveSpec bare = spec.solve;
+  bare.surface_listeners_m.clear();
+  bare.far_directions.clear();
+  const double wall = timed(bare, r);
+  const double heard_wall = timed(spec.solve, r);
+  const double series = static_cast<double>(spec.solve.surface_listeners_m.size() + spec.solve.far_directions.size());
   Calibration c;
-  const auto t0 = std::chrono::steady_clock::now();
-  const SolveResult r = run_solve(MPI_COMM_SELF, spec.solve, 0);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double updates = static_cast<double>(r.cells) * (spec.solve.n_samples - 1);
   c.bytes_per_cell = r.bytes / static_cast<double>(r.cells);
   c.rate = given_rate > 0 ? given_rate : updates / wall;
+  c.surface_s = std::max(0.0, heard_wall - wall) / (series * spec.solve.n_samples);
   c.how = given_rate > 0 ? "given with --rate"
                          : fmt::format("measured here: {:.3g} M cells x {} steps in {:.2f} s on 1 rank, setup included",
                                        static_cast<double>(r.cells) / 1e6, spec.solve.n_samples - 1, wall);
+  c.how += fmt::format("; {:.3g} us per sample of a series through the Kirchhoff surface ({:.0f} series in {:.2f} s)",
+                       c.surface_s * 1e6, series, heard_wall - wall);
   return c;
 }
 
@@ -46,6 +60,7 @@ struct PlanCost {
   double cells = 0;    // per task
   int steps = 0;
   double updates = 0;  // cell-updates per task
+  double series = 0;   // series per task heard through the surface (directions x (radii + 1))
   Calibration cal;
   int groups = 0;
   std::size_t waves = 0;
@@ -63,10 +78,12 @@ PlanCost plan_cost(const io::Config& config, const PanSpec& spec, std::size_t n_
   c.cal = calibrate(config, o.rate);
   c.groups = o.ranks / o.ranks_per_task;
   c.waves = (n_tasks + static_cast<std::size_t>(c.groups) - 1) / static_cast<std::size_t>(c.groups);
-  c.task_s = c.updates / (c.cal.rate * o.ranks_per_task);
+  c.series = static_cast<double>(spec.solve.surface_listeners_m.size() + spec.solve.far_directions.size());
+  // The grid's steps split over the group's ranks; the surface's series are rank 0's alone.
+  c.task_s = c.updates / (c.cal.rate * o.ranks_per_task) + c.series * spec.solve.n_samples * c.cal.surface_s;
   c.wall_s = static_cast<double>(c.waves) * c.task_s;
   c.limit_s = 1.5 * c.wall_s + 600;  // margin for slower nodes and queue start-up, plus the 120 s signal
-  c.listener_bytes = static_cast<double>(spec.solve.listeners_m.size()) * 8 * spec.solve.n_samples * 4;
+  c.listener_bytes = (static_cast<double>(spec.solve.listeners_m.size()) * 4 + c.series * 8) * spec.solve.n_samples;
   c.rank_bytes = c.cal.bytes_per_cell * c.cells / o.ranks_per_task + c.listener_bytes;
   c.cores = o.cores_per_node > 0 ? o.cores_per_node : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   c.nodes = (o.ranks + c.cores - 1) / c.cores;
@@ -78,8 +95,9 @@ std::string pan_report(const PanSpec& spec, const std::vector<PanTask>& tasks, c
   const auto& g = spec.solve.problem.grid;
   std::string out = fmt::format("plan: {}: {} proxies x {} fields = {} tasks\n", o.config_path.empty() ? "defaults" : o.config_path,
                                 spec.proxies_bc_m.size(), spec.solve.fields.size(), tasks.size());
-  out += fmt::format("  per task:    {} grid {}x{}x{} = {:.3g} M cells, {} steps: {:.3g} cell-updates\n",
-                     g.octant ? "octant" : "full", g.n[0], g.n[1], g.n[2], c.cells / 1e6, c.steps, c.updates);
+  out += fmt::format("  per task:    {} grid {}x{}x{} = {:.3g} M cells, {} steps: {:.3g} cell-updates; {:.0f} series "
+                     "through the Kirchhoff surface\n",
+                     g.octant ? "octant" : "full", g.n[0], g.n[1], g.n[2], c.cells / 1e6, c.steps, c.updates, c.series);
   out += fmt::format("  memory:      {:.1f} bytes/cell -> {:.0f} MiB per rank with {} rank(s) per task (+ {:.0f} MiB of "
                      "listener records on each group's rank 0, counted)\n",
                      c.cal.bytes_per_cell, c.rank_bytes / 1048576.0, o.ranks_per_task, c.listener_bytes / 1048576.0);

@@ -35,16 +35,13 @@ const io::Schema& pan_schema() {
         {"time.dt_s", 1.0 / 96000.0, "time step = PAN sample interval [s]; CFL limit dx / (c sqrt 3)", {0.0, 1.0, true}},
         {"time.tail_s", 0.012, "recorded time after the pulse reaches the farthest radius [s]", {0.0, 10.0, true}},
         {"solve.fields", io::RealList{1, 2, 3, 4, 5, 6}, "rigid-body fields to solve and store", {1, 6}},
-        {"fit.radii_m", io::RealList{0.7, 0.85, 1.0, 1.2, 1.5},
-         "the M listening radii [m], outside the bounding sphere; rounded to whole steps of c dt", {0.0, 1e4, true}},
-        {"fit.terms", std::int64_t{2}, "N, terms of the 1/R^k series (8); with fit.far_field, q_1 is the far field and "
-                                       "q_2 .. q_N are fitted (3 there: docs/pan.md)", {1, 8}},
-        {"fit.far_field", false, "hear every listener through a Kirchhoff surface around the body (the grid then holds "
-                                 "only the body) and take q_1 as the far field itself (docs/pan.md, \"The far field\"); "
-                                 "false: listeners on the grid and every term fitted over the radii (the paper)"},
+        {"fit.radii_m", io::RealList{0.7, 0.85, 1.0, 1.2, 1.5, 2.0, 3.0, 5.0},
+         "the M stored radii [m], ascending, outside the Kirchhoff surface (A + 3 cells); rounded to whole steps of "
+         "c dt. R p is interpolated in 1/R between them and the far field (docs/pan.md, \"The radial model\")",
+         {0.0, 1e4, true}},
         {"fit.divisions", std::int64_t{8}, "octant edges cut in d (even): (d+1)(d+2)/2 directions, d^2 triangles; 8: "
                                            "the paper's 45 and 64", {2, 64}},
-        {"fit.epsilon", 0.01, "keep wavelet coefficient j iff some |p^_i^j| >= epsilon ||p^_i||_inf", {0.0, 1.0}},
+        {"fit.epsilon", 0.01, "keep wavelet coefficient j iff |p^_i^j| >= epsilon ||p^_i||_inf at some radius i or at infinity (the far field)", {0.0, 1.0}},
         {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
         {"solver.scheme", std::string("me4"), "update away from the body: me4 (fourth order in space and time, "
                                               "25 points) or srl (the 7-point leapfrog, second order)",
@@ -73,8 +70,6 @@ PanParams parse_pan_params(const io::Config& config) {
   p.time_tail_s = config.real("time.tail_s");
   p.solve_fields = config.reals("solve.fields");
   p.fit_radii_m = config.reals("fit.radii_m");
-  p.fit_terms = static_cast<int>(config.integer("fit.terms"));
-  p.fit_far_field = config.boolean("fit.far_field");
   p.fit_divisions = static_cast<int>(config.integer("fit.divisions"));
   p.fit_epsilon = config.real("fit.epsilon");
   p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
@@ -110,39 +105,32 @@ std::vector<std::array<double, 2>> proxy_list(const PanParams& in) {
 double kirchhoff_radius_m(const PanSpec& spec, double dx_m) { return spec.a_m + 3 * dx_m; }
 
 // One proxy's solve: octant mode (the bank stores the positive octant; eqs. 16-21 give the rest),
-// a sphere of radius A (build_proxy sets the body per proxy), listeners at every direction x radius.
+// a sphere of radius A (build_proxy sets the body per proxy). Every listener is heard through the
+// Kirchhoff surface (make_pan_spec), so the grid need only hold the surface; one listener just
+// outside it keeps the solve's error budget and health check.
 SolveParams proxy_solve_params(const PanParams& in, const PanSpec& spec) {
-  const double r_max = *std::max_element(spec.radii_m.begin(), spec.radii_m.end());
+  const double r_max = spec.radii_m.back();
   SolveParams s = parse_solve_params(io::Config(solve_schema()));  // the solve's defaults for the rest
   s.medium_c_m_s = in.medium_c_m_s;
   s.medium_rho_kg_m3 = in.medium_rho_kg_m3;
   s.pulse_h_s = in.pulse_h_s;
   s.grid_dx_m = in.grid_dx_m;
-  // Room for the listeners' tricubic stencils (2 cells) and, for me4, the blend into the layer (an
+  // Room for the listener's tricubic stencil (2 cells) and, for me4, the blend into the layer (an
   // unknown scheme is make_solve_spec's error).
   const auto scheme = kernels::fdtd::scheme_from_name(in.solver_scheme).value_or(kernels::fdtd::Scheme::srl);
   const int margin_cells = 3 + kernels::fdtd::blend_cells(scheme, in.grid_pml_cells);
-  s.grid_half_width_m = r_max + margin_cells * in.grid_dx_m;
+  const double rs = kirchhoff_radius_m(spec, in.grid_dx_m);
+  s.grid_half_width_m = rs + (margin_cells + 2) * in.grid_dx_m;
   s.grid_pml_cells = in.grid_pml_cells;
   s.grid_octant = true;
   s.time_dt_s = in.time_dt_s;
-  s.time_duration_s = r_max / in.medium_c_m_s + in.time_tail_s;
+  s.time_duration_s = r_max / in.medium_c_m_s + in.time_tail_s;  // the outermost radius hears the whole tail
   s.object_a_m = s.object_b_m = s.object_c_m = spec.a_m;
   s.solver_cut_cell_samples = in.solver_cut_cell_samples;
   s.solver_scheme = in.solver_scheme;
   s.solver_max_dispersion_error = in.solver_max_dispersion_error;
   s.solve_fields = in.solve_fields;
-  s.listeners_points_m.clear();
-  if (spec.far_field) {
-    // Every listener is heard through the Kirchhoff surface (build_proxy): the grid need only hold
-    // the surface, and one listener just outside it keeps the error budget and health check.
-    const double rs = kirchhoff_radius_m(spec, in.grid_dx_m);
-    s.grid_half_width_m = rs + (margin_cells + 2) * in.grid_dx_m;
-    s.listeners_points_m.push_back({rs + 2 * in.grid_dx_m, 0.0, 0.0});
-    return s;
-  }
-  for (const auto& d : pan::direction_vertices(spec.divisions))
-    for (double r : spec.radii_m) s.listeners_points_m.push_back({r * d[0], r * d[1], r * d[2]});
+  s.listeners_points_m = {{rs + 2 * in.grid_dx_m, 0.0, 0.0}};
   return s;
 }
 
@@ -158,38 +146,33 @@ PanSpec make_pan_spec(const PanParams& in) {
       throw InputError(fmt::format("config: key 'proxies.list_m' proxy {} = [{}, {}]: needs C <= B <= A = {}", p + 1, b,
                                    c, spec.a_m));
   }
-  spec.terms = in.fit_terms;
   spec.divisions = in.fit_divisions;
   if (spec.divisions % 2 != 0)  // the quadratic direction elements group the triangles in fours
     throw InputError(fmt::format("config: key 'fit.divisions' has {}: must be even", spec.divisions));
   spec.epsilon = in.fit_epsilon;
   const double c_m_s = in.medium_c_m_s, dt = in.time_dt_s, dx = in.grid_dx_m;
+  if (in.fit_radii_m.empty()) throw InputError("config: key 'fit.radii_m' is empty: give at least one radius");
   for (double r : in.fit_radii_m) {
     const int k = static_cast<int>(std::lround(r / (c_m_s * dt)));
+    if (!spec.shift_steps.empty() && k <= spec.shift_steps.back())
+      throw InputError(fmt::format("config: key 'fit.radii_m' has {} after {}: the radii must ascend, at least one "
+                                   "step c dt = {:.4g} m apart", r, spec.radii_m.back(), c_m_s * dt));
     spec.shift_steps.push_back(k);
     spec.radii_m.push_back(k * c_m_s * dt);
-    if (spec.radii_m.back() < spec.a_m + 2 * dx)
-      throw InputError(fmt::format("config: key 'fit.radii_m' has {}: must lie outside the bounding sphere "
-                                   "(A = {} m) by two cells (grid.dx_m = {})",
-                                   r, spec.a_m, dx));
   }
-  if (static_cast<int>(spec.radii_m.size()) < spec.terms)
-    throw InputError(fmt::format("config: key 'fit.radii_m' has {} radii: need at least fit.terms = {}",
-                                 spec.radii_m.size(), spec.terms));
-  spec.far_field = in.fit_far_field;
   spec.solve = make_solve_spec(proxy_solve_params(in, spec));  // CFL, domain and listener checks
-  if (spec.far_field) {
-    spec.solve.kirchhoff_radius_m = kirchhoff_radius_m(spec, dx);
-    for (double r : spec.radii_m)  // every direction alike: the check along x
-      if (auto why = surface_listener_problem(spec.solve, {r, 0.0, 0.0}))
-        throw InputError(fmt::format("config: key 'fit.radii_m' has {} (fit.far_field = true): {}", r, *why));
-    spec.solve.far_directions = pan::direction_vertices(spec.divisions);
-    for (const auto& d : spec.solve.far_directions)
-      for (double r : spec.radii_m) spec.solve.surface_listeners_m.push_back({r * d[0], r * d[1], r * d[2]});
-  }
+  spec.solve.kirchhoff_radius_m = kirchhoff_radius_m(spec, dx);
+  for (std::size_t i = 0; i < spec.radii_m.size(); ++i)  // every direction alike: the check along x
+    if (auto why = surface_listener_problem(spec.solve, {spec.radii_m[i], 0.0, 0.0}))
+      throw InputError(fmt::format("config: key 'fit.radii_m' has {}: {}", in.fit_radii_m[i], *why));
+  spec.solve.far_directions = pan::direction_vertices(spec.divisions);
+  for (const auto& d : spec.solve.far_directions)
+    for (double r : spec.radii_m) spec.solve.surface_listeners_m.push_back({r * d[0], r * d[1], r * d[2]});
   spec.lead_steps = static_cast<int>(std::ceil(spec.a_m / (c_m_s * dt)));
-  const int k_min = *std::min_element(spec.shift_steps.begin(), spec.shift_steps.end()) - spec.lead_steps;
-  spec.length = static_cast<std::uint32_t>(pan::next_power_of_two(static_cast<std::size_t>(spec.solve.n_samples - k_min)));
+  // The retarded window every radius hears: from lead_steps before the pulse to the end of the
+  // outermost radius' record (the tail); nearer radii's later samples are dropped.
+  const int k_max = spec.shift_steps.back() - spec.lead_steps;
+  spec.length = static_cast<std::uint32_t>(pan::next_power_of_two(static_cast<std::size_t>(spec.solve.n_samples - k_max)));
   return spec;
 }
 
@@ -203,7 +186,6 @@ model::PanBankHeader pan_header(const PanSpec& spec) {
   h.t_first_s = -(spec.solve.i_time_zero + spec.lead_steps) * p.dt_s;
   h.epsilon = spec.epsilon;
   h.a_m = spec.a_m;
-  h.terms = spec.terms;
   h.length = spec.length;
   h.radii_m = spec.radii_m;
   h.directions = pan::direction_vertices(spec.divisions);

@@ -20,15 +20,11 @@ struct PanSpec {
   SolveSpec solve;                     // one proxy's solve; body and listeners set per proxy
   std::vector<std::array<double, 2>> proxies_bc_m;  // (B, C)
   double a_m = 0.5;
-  std::vector<double> radii_m;         // whole numbers of steps: shift[i] * c * dt
+  std::vector<double> radii_m;         // ascending, whole numbers of steps: shift[i] * c * dt
   std::vector<int> shift_steps;
   // The retarded frame starts A/c before the pulse: no listener outside the bounding sphere hears
   // anything before t - R/c = -2h - A/c. Each series is shifted by shift_steps[i] - lead_steps.
   int lead_steps = 0;
-  int terms = 2;
-  // q_1 from the far field of a Kirchhoff box around the body (kernels/fdtd/kirchhoff.hpp), the
-  // other terms fitted to the rest; false: all terms fitted over the radii (the paper's fit).
-  bool far_field = false;
   int divisions = 8;                   // octant triangulation: 8 -> 45 directions (the paper's)
   double epsilon = 0.01;
   std::uint32_t length = 0;            // wavelet length T
@@ -46,8 +42,7 @@ struct PanParams {
   double time_dt_s = 0, time_tail_s = 0;
   std::vector<double> solve_fields;
   std::vector<double> fit_radii_m;
-  int fit_terms = 0, fit_divisions = 0;
-  bool fit_far_field = false;
+  int fit_divisions = 0;
   double fit_epsilon = 0;
   int solver_cut_cell_samples = 0;
   std::string solver_scheme = "me4";

@@ -29,7 +29,7 @@ std::string pan_bank_info(const std::string& path) {
       for (const auto& d : f) kept += d.index.size();
   const double file_mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
   const double raw_mb = static_cast<double>(bank.proxies.size()) * 6 * static_cast<double>(h.directions.size()) *
-                        static_cast<double>(h.terms) * h.length * 4 / 1e6;
+                        static_cast<double>(h.values()) * h.length * 4 / 1e6;
   std::string out = fmt::format("{}: PAN bank (format {} v{})\n", path, io::kPanBankFormat, io::kPanBankFormatVersion);
   out += fmt::format("  proxies:     {} ellipsoids, A = {} m, fields 1-6 (translation x y z, rotation x y z)\n",
                      bank.proxies.size(), h.a_m);
@@ -41,9 +41,9 @@ std::string pan_bank_info(const std::string& path) {
   out += fmt::format("  sampling:    {:.6g} Hz, wavelet length {} (Daubechies 10)\n", 1.0 / h.dt_s, h.length);
   std::string radii;
   for (double r : h.radii_m) radii += fmt::format(" {:.4g}", r);
-  out += fmt::format("  fit:         {} directions x {} radii [m]:{}; N = {} terms; epsilon = {}\n", h.directions.size(),
-                     h.radii_m.size(), radii, h.terms, h.epsilon);
-  out += fmt::format("  size:        {:.3f} MB on disk, {} coefficients kept ({:.2f} % of {:.1f} MB as raw float32 q_k)\n",
+  out += fmt::format("  fit:         {} directions x {} radii [m]:{} and the far field; epsilon = {}\n",
+                     h.directions.size(), h.radii_m.size(), radii, h.epsilon);
+  out += fmt::format("  size:        {:.3f} MB on disk, {} coefficients kept ({:.2f} % of {:.1f} MB as raw float32 series)\n",
                      file_mb, kept, 100.0 * file_mb / raw_mb, raw_mb);
   out += fmt::format("  provenance:  clatter {} (git {}), {} ranks, created {}\n", prov("clatter_version"),
                      prov("git_revision"), io::read_attribute<std::int32_t>(file, "/provenance/run", "n_ranks"),

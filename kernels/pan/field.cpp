@@ -5,6 +5,8 @@
 
 #include "kernels/fdtd/geometry.hpp"
 #include "kernels/pan/directions.hpp"
+#include "kernels/pan/radial.hpp"
+#include "kernels/pan/wavelet.hpp"
 
 namespace clatter::kernels::pan {
 
@@ -40,6 +42,7 @@ Series evaluate_sum(const model::PanBankHeader& bank, const model::PanProxy& pro
   const int divisions = divisions_of(bank.directions.size());
   if (divisions == 0) throw std::invalid_argument("PAN evaluate: direction count is not an octant triangulation");
   const DirectionWeights w = locate_direction(y, divisions, interpolation);
+  const RadialWeights radial = radial_weights(bank.radii_m, r);
   for (std::size_t i = 0; i < weights.size(); ++i) {
     const int field = static_cast<int>(i) + 1;
     if (!proxy.solved(field) || weights[i] == 0) continue;
@@ -52,7 +55,7 @@ Series evaluate_sum(const model::PanBankHeader& bank, const model::PanProxy& pro
     const double scale = weights[i] * sign * (field <= 3 ? beta : beta * beta) * gain;
     for (std::size_t v = 0; v < static_cast<std::size_t>(w.count); ++v)
       if (w.weight[v] != 0)
-        accumulate(directions.at(static_cast<std::size_t>(w.vertex[v])), bank.terms, r, scale * w.weight[v], c);
+        accumulate(directions.at(static_cast<std::size_t>(w.vertex[v])), bank.values(), radial, scale * w.weight[v], c);
   }
   double delay = 0;  // the direction's alignment, interpolated like the signals
   if (!proxy.delay_steps.empty())

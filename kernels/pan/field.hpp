@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "kernels/pan/directions.hpp"
-#include "kernels/pan/fit.hpp"
 #include "model/pan_bank.hpp"
 
 namespace clatter::kernels::pan {
@@ -26,7 +25,8 @@ struct Series {
 };
 
 // output_rate_hz = 0: the full PAN rate. The caller checks that |x| / beta lies outside the
-// unscaled proxy's bounding sphere (where the series (8) holds). The field must be solved.
+// unscaled proxy's bounding sphere (the radial model, kernels/pan/radial.hpp, is most accurate
+// from the innermost stored radius out). The field must be solved.
 Series evaluate(const FieldView& f, const std::array<double, 3>& x_m, double beta = 1.0, double output_rate_hz = 0.0,
                 Interpolation interpolation = Interpolation::quadratic);
 

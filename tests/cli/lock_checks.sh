@@ -167,13 +167,13 @@ grep -q "e.h5: holds 6 of 6 tasks of this sweep, more than the 3 of this merge; 
 echo "(e) partial merge refused:          $(grep error logs/e2.log | cut -c1-120)"
 "$bank" merge --results partial -o e-copy.h5 > /dev/null 2>&1
 [[ $? -eq 4 ]] || fail "(e) partial merge to a new file: not exit 4"
-pan -o e.h5 --set fit.terms=1 > logs/e3.log 2>&1
+pan -o e.h5 --set fit.epsilon=0.02 > logs/e3.log 2>&1
 code=$?
 [[ $code -eq 2 ]] && grep -q "e.h5: holds a complete bank of another sweep" logs/e3.log ||
   fail "(e) a run of another config over a complete bank: exit $code ($(tail -2 logs/e3.log))"
 grep -q "solve:" logs/e3.log && fail "(e) computed before refusing to replace a bank of another sweep"
 [[ $(sum e.h5) == "$ref" ]] || fail "(e) the complete bank changed"
-pan -o other.h5 --set fit.terms=1 --keep-results > logs/e4.log 2>&1 || fail "(e) other sweep: exit $?"
+pan -o other.h5 --set fit.epsilon=0.02 --keep-results > logs/e4.log 2>&1 || fail "(e) other sweep: exit $?"
 cp other.h5.tasks/p000-f4.h5 e.h5.tasks/p000-f4.h5
 "$bank" merge --results e.h5.tasks -o e.h5 > logs/e5.log 2>&1
 code=$?

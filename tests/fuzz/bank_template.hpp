@@ -1,5 +1,5 @@
 #pragma once
-// A small valid PAN bank and task result (3 directions, 2 terms, wavelet length 16), the starting
+// A small valid PAN bank and task result (3 directions, 2 radii: 3 values per coefficient, wavelet length 16), the starting
 // point the HDF5 harnesses mutate. Written through Clatter's own writers, so the templates follow
 // the format as the code defines it.
 #include <string>
@@ -8,12 +8,12 @@
 
 namespace clatter::fuzz {
 
-inline constexpr int kTemplateTerms = 2;
+inline constexpr std::size_t kTemplateValues = 3;  // the far field and one residual per radius
 inline constexpr std::uint32_t kTemplateLength = 16;
 inline constexpr std::size_t kTemplateDirections = 3;
 
 inline model::SparseTerms template_terms(std::uint32_t first) {
-  return {{first, first + 3, first + 7}, {0.5f, -0.25f, 1.0f, 0.125f, -2.0f, 0.75f}};
+  return {{first, first + 3, first + 7}, {0.5f, -0.25f, 0.0625f, 1.0f, 0.125f, -0.5f, -2.0f, 0.75f, 0.25f}};
 }
 
 inline model::PanBank template_bank() {
@@ -25,7 +25,6 @@ inline model::PanBank template_bank() {
   h.dt_s = 1.0 / 24000;
   h.t_first_s = -0.003;
   h.epsilon = 0.01;
-  h.terms = kTemplateTerms;
   h.length = kTemplateLength;
   h.radii_m = {0.7, 0.85};
   h.directions = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};

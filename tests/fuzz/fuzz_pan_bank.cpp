@@ -23,7 +23,9 @@ const std::vector<fuzz::H5Item>& template_items() {
 
 void check(const model::PanBank& bank) {
   const auto& h = bank.header;
-  const std::size_t n_dirs = h.directions.size(), n_terms = static_cast<std::size_t>(h.terms);
+  const std::size_t n_dirs = h.directions.size(), n_values = h.values();
+  for (std::size_t i = 0; i < h.radii_m.size(); ++i)  // the radial model's nodes (kernels/pan/radial.hpp)
+    if (!(h.radii_m[i] > 0) || (i > 0 && !(h.radii_m[i] > h.radii_m[i - 1]))) fuzz::broken("radii not positive ascending");
   for (const auto& t : h.triangles)
     for (int v : t)
       if (v < 0 || static_cast<std::size_t>(v) >= n_dirs) fuzz::broken("triangle corner out of range");
@@ -32,7 +34,7 @@ void check(const model::PanBank& bank) {
     for (const auto& field : p.fields) {
       if (!field.empty() && field.size() != n_dirs) fuzz::broken("terms per direction");
       for (const auto& d : field) {
-        if (d.value.size() != d.index.size() * n_terms) fuzz::broken("values per index");
+        if (d.value.size() != d.index.size() * n_values) fuzz::broken("values per index");
         for (std::size_t e = 0; e < d.index.size(); ++e)
           if (d.index[e] >= h.length || (e > 0 && d.index[e] <= d.index[e - 1])) fuzz::broken("index order/range");
       }
