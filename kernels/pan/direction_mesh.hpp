@@ -1,0 +1,87 @@
+#pragma once
+// An adaptive direction set of one PAN field (issue 32): the positive octant's six-node quadratic
+// elements (directions.hpp) as roots, each split into four by its edge midpoints where the
+// quadratic interpolation of its nodes misses the field. Vertices lie on a fine lattice of the
+// gnomonic triangle x + y + z = 1, a point (a, b) being the direction (a, b, L - a - b) / |.|; the
+// lattice has room for `max_levels` splits below a root, so every node of every element is a
+// lattice point and a vertex shared by neighbours is stored once.
+//
+// The split of an element (corners P0, P1, P2; midpoints M01, M12, M20) gives the children
+// (P0, M01, M20), (M01, P1, M12), (M20, M12, P2) and the centre (M12, M20, M01); barycentric
+// coordinates are linear in the gnomonic plane, so a direction is located by descending from its
+// root. A refined element's neighbour is not refined with it: along their shared edge the fine side
+// interpolates through five nodes and the coarse side through three, both through the same stored
+// values, so the interpolant may step there by at most what the refinement tolerates.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <unordered_map>
+#include <vector>
+
+#include "kernels/pan/directions.hpp"
+
+namespace clatter::kernels::pan {
+
+struct LatticePoint {
+  std::int32_t a = 0, b = 0;
+  bool operator==(const LatticePoint&) const = default;
+};
+
+class DirectionMesh {
+ public:
+  // The uniform layout of `divisions` (even; 8: the paper's 45 directions), unrefined, on a
+  // lattice with room for `max_levels` splits. Its vertices are direction_vertices(divisions), in
+  // that order, and locate() gives locate_direction's quadratic weights.
+  DirectionMesh(int divisions, int max_levels);
+  // A stored mesh (io): throws std::invalid_argument unless the arrays form one (roots of the
+  // layout first, children after their parent, every node the lattice point its element implies).
+  DirectionMesh(int divisions, int max_levels, std::vector<LatticePoint> vertices,
+                std::vector<std::array<std::int32_t, 6>> elements, std::vector<std::int32_t> first_child);
+
+  int divisions() const { return divisions_; }
+  int max_levels() const { return max_levels_; }
+  int lattice() const { return lattice_; }
+  std::size_t size() const { return vertices_.size(); }
+  const std::vector<LatticePoint>& vertices() const { return vertices_; }
+  // Nodes of each element: corners 0-2, then the midpoints of edges 01, 12, 20.
+  const std::vector<std::array<std::int32_t, 6>>& elements() const { return elements_; }
+  // Per element, the first of its four children (consecutive), or -1 for a leaf.
+  const std::vector<std::int32_t>& first_child() const { return first_child_; }
+  std::array<double, 3> direction(std::size_t vertex) const { return direction(vertices_.at(vertex)); }
+  std::array<double, 3> direction(const LatticePoint& p) const;
+  int level(std::size_t element) const { return level_.at(element); }
+
+  // The nine lattice points a split of element e would add (the children's edge midpoints), each
+  // with its barycentric coordinates in e.
+  struct SplitPoint {
+    LatticePoint point;
+    std::array<double, 3> l;
+  };
+  std::array<SplitPoint, 9> split_points(std::size_t element) const;
+  bool can_split(std::size_t element) const { return first_child_.at(element) < 0 && level_.at(element) < max_levels_; }
+  // Splits a leaf; the new vertices are appended (their indices from the old size() on).
+  void split(std::size_t element);
+
+  // Quadratic weights over the leaf holding direction d (closed positive octant).
+  DirectionWeights locate(const std::array<double, 3>& d) const;
+  // The six nodes' weights at barycentric coordinates l of element e.
+  DirectionWeights weights(std::size_t element, const std::array<double, 3>& l) const;
+
+ private:
+  int vertex_at(const LatticePoint& p);  // existing or appended
+  int divisions_, max_levels_, lattice_;
+  std::vector<LatticePoint> vertices_;
+  std::vector<std::array<std::int32_t, 6>> elements_;
+  std::vector<std::int32_t> first_child_;
+  std::vector<int> level_;
+  std::unordered_map<std::int64_t, int> index_;  // lattice point -> vertex
+};
+
+// Splits elements, coarsest first, while some split point misses by more than `tolerance`:
+// miss(point, w) is how far the interpolation with weights w over the mesh's vertices (the
+// caller's values at mesh.direction(v)) misses the true value at mesh.direction(point), in the
+// caller's measure. Stops at max_levels or after `max_vertices` vertices. Returns the splits made.
+using DirectionMiss = std::function<double(const LatticePoint& point, const DirectionWeights& w)>;
+int refine(DirectionMesh& mesh, const DirectionMiss& miss, double tolerance, std::size_t max_vertices);
+
+}  // namespace clatter::kernels::pan
