@@ -36,10 +36,10 @@ struct PanBankHeader {
 };
 
 // One proxy ellipsoid (A, B, C): per field 1..6, one SparseTerms per direction, or none when the
-// field was not solved.
+// field was not solved. Each direction's series are aligned by the support distance
+// (kernels/pan/fit.hpp support_delay_samples), which follows from A, B, C: nothing stored.
 struct PanProxy {
   double b_m = 0, c_m = 0;
-  std::vector<std::int32_t> delay_steps;            // per direction: alignment advance in samples
   std::array<std::vector<SparseTerms>, 6> fields;  // fields[field - 1]
 
   const std::vector<SparseTerms>& field(int f) const { return fields.at(static_cast<std::size_t>(f - 1)); }

@@ -39,7 +39,6 @@ model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results
     model::PanProxy proxy;
     proxy.b_m = spec.proxies_bc_m[p][0];
     proxy.c_m = spec.proxies_bc_m[p][1];
-    proxy.delay_steps = proxy_delay_steps(spec, p);
     bank.proxies.push_back(std::move(proxy));
   }
   const auto tasks = pan_tasks(spec);
@@ -78,45 +77,52 @@ std::vector<double> aligned_far_field(const PanSpec& spec, const kernels::fdtd::
 
 ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                         const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s) {
+  namespace fdtd = kernels::fdtd;
   SolveSpec s = spec.solve;
-  s.problem.body = {spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1]};
-  // make_pan_spec checked the fitted listeners; the extra ones are new, heard through the
-  // Kirchhoff surface like them, anywhere outside it.
-  for (std::size_t l = 0; l < extra_listeners_m.size(); ++l) {
-    const auto& x = extra_listeners_m[l];
-    if (auto why = surface_listener_problem(s, x))
-      throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {}", l + 1,
-                                   spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1], *why));
-    s.surface_listeners_m.push_back(x);
-  }
-  SolveResult raw = run_solve(comm, s, progress_interval_s);
+  const double b_m = spec.proxies_bc_m[proxy][0], c_m = spec.proxies_bc_m[proxy][1];
+  s.problem.body = {spec.a_m, b_m, c_m};
+  // make_pan_spec checked the radii; the extra listeners are new, heard through the Kirchhoff
+  // surface like them, anywhere outside it.
+  for (std::size_t l = 0; l < extra_listeners_m.size(); ++l)
+    if (auto why = surface_listener_problem(s, extra_listeners_m[l]))
+      throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {}", l + 1, b_m, c_m, *why));
   ProxyResult out;
-  if (mpi::rank(comm) != 0) return out;
-  Stage stage("fit");
-  out.proxy.b_m = spec.proxies_bc_m[proxy][0];
-  out.proxy.c_m = spec.proxies_bc_m[proxy][1];
+  out.proxy.b_m = b_m;
+  out.proxy.c_m = c_m;
   const auto directions = pan::direction_vertices(spec.divisions);
-  out.proxy.delay_steps = proxy_delay_steps(spec, proxy);
   std::vector<int> shifts;
   for (int k : spec.shift_steps) shifts.push_back(k - spec.lead_steps);
   const pan::Fitter fitter(spec.radii_m, shifts, spec.length);
   const std::size_t ns = static_cast<std::size_t>(s.n_samples), m = spec.radii_m.size();
-  const std::size_t n_fitted = directions.size() * m;
-  for (std::size_t f = 0; f < s.fields.size(); ++f) {
-    auto& dirs = out.proxy.fields[static_cast<std::size_t>(s.fields[f] - 1)];
-    // Every series through the surface, on the solve's own samples.
-    const auto& heard = raw.surface_series[f];
-    std::vector<float> near(heard.size() * ns);
-    for (std::size_t l = 0; l < heard.size(); ++l)
-      for (std::size_t k = 0; k < ns; ++k) near[l * ns + k] = static_cast<float>(heard[l].value[k]);
-    for (std::size_t d = 0; d < directions.size(); ++d) {
-      std::vector<const float*> series;
-      for (std::size_t i = 0; i < m; ++i) series.push_back(near.data() + (d * m + i) * ns);
-      const auto far = aligned_far_field(spec, raw.far[f][d], out.proxy.delay_steps[d]);
-      dirs.push_back(fitter.fit(series, ns, spec.epsilon, out.proxy.delay_steps[d], far));
+  const double dt = s.problem.dt_s;
+  // Rank 0, per field, while its surface is alive: every direction heard at its radii and at
+  // infinity, aligned by its support distance (the whole steps in the fit, the fraction here).
+  auto hear = [&](std::size_t fi, const fdtd::SurfaceField& surface) {
+    auto& dirs = out.proxy.fields[static_cast<std::size_t>(s.fields[fi] - 1)];
+    std::vector<std::vector<float>> near(m, std::vector<float>(ns));
+    std::vector<const float*> series;
+    for (const auto& v : near) series.push_back(v.data());
+    for (const auto& d : directions) {
+      const double delay = pan::support_delay_samples(d, spec.a_m, b_m, c_m, s.problem.c_m_s, dt);
+      const int whole = static_cast<int>(std::floor(delay));
+      const double advance_s = -(delay - whole) * dt;
+      for (std::size_t i = 0; i < m; ++i) {
+        const double r = spec.radii_m[i];
+        const auto p = fdtd::pressure_at(surface, {r * d[0], r * d[1], r * d[2]}, advance_s);
+        for (std::size_t k = 0; k < ns; ++k) near[i][k] = static_cast<float>(p.value[k]);
+      }
+      const auto far = aligned_far_field(spec, fdtd::far_field(surface, d, advance_s), whole);
+      dirs.push_back(fitter.fit(series, ns, spec.epsilon, whole, far));
     }
-    out.extra_series.emplace_back(near.begin() + static_cast<std::ptrdiff_t>(n_fitted * ns), near.end());
-  }
+    std::vector<float> extra(extra_listeners_m.size() * ns);
+    for (std::size_t l = 0; l < extra_listeners_m.size(); ++l) {
+      const auto p = fdtd::pressure_at(surface, extra_listeners_m[l]);
+      for (std::size_t k = 0; k < ns; ++k) extra[l * ns + k] = static_cast<float>(p.value[k]);
+    }
+    out.extra_series.push_back(std::move(extra));
+  };
+  run_solve(comm, s, progress_interval_s, hear);
+  if (mpi::rank(comm) != 0) return {};
   return out;
 }
 

@@ -29,18 +29,15 @@ Calibration calibrate(const io::Config& config, double given_rate) {
   small.time_tail_s = 64 * small.time_dt_s;
   small.solve_fields = {1};
   const PanSpec spec = make_pan_spec(small);
-  auto timed = [](const SolveSpec& s, SolveResult& r) {
+  auto timed = [](auto&& work) {
     const auto t0 = std::chrono::steady_clock::now();
-    r = run_solve(MPI_COMM_SELF, s, 0);
+    work();
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   SolveResult r;
-  SolveSpec bare = spec.solve;
-  bare.surface_listeners_m.clear();
-  bare.far_directions.clear();
-  const double wall = timed(bare, r);
-  const double heard_wall = timed(spec.solve, r);
-  const double series = static_cast<double>(spec.solve.surface_listeners_m.size() + spec.solve.far_directions.size());
+  const double wall = timed([&] { r = run_solve(MPI_COMM_SELF, spec.solve, 0); });
+  const double heard_wall = timed([&] { build_proxy(MPI_COMM_SELF, spec, 0, {}, 0); });
+  const double series = pan_series_per_task(spec);
   Calibration c;
   const double updates = static_cast<double>(r.cells) * (spec.solve.n_samples - 1);
   c.bytes_per_cell = r.bytes / static_cast<double>(r.cells);
@@ -78,7 +75,7 @@ PlanCost plan_cost(const io::Config& config, const PanSpec& spec, std::size_t n_
   c.cal = calibrate(config, o.rate);
   c.groups = o.ranks / o.ranks_per_task;
   c.waves = (n_tasks + static_cast<std::size_t>(c.groups) - 1) / static_cast<std::size_t>(c.groups);
-  c.series = static_cast<double>(spec.solve.surface_listeners_m.size() + spec.solve.far_directions.size());
+  c.series = pan_series_per_task(spec);
   // The grid's steps split over the group's ranks; the surface's series are rank 0's alone.
   c.task_s = c.updates / (c.cal.rate * o.ranks_per_task) + c.series * spec.solve.n_samples * c.cal.surface_s;
   c.wall_s = static_cast<double>(c.waves) * c.task_s;

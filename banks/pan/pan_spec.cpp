@@ -165,9 +165,6 @@ PanSpec make_pan_spec(const PanParams& in) {
   for (std::size_t i = 0; i < spec.radii_m.size(); ++i)  // every direction alike: the check along x
     if (auto why = surface_listener_problem(spec.solve, {spec.radii_m[i], 0.0, 0.0}))
       throw InputError(fmt::format("config: key 'fit.radii_m' has {}: {}", in.fit_radii_m[i], *why));
-  spec.solve.far_directions = pan::direction_vertices(spec.divisions);
-  for (const auto& d : spec.solve.far_directions)
-    for (double r : spec.radii_m) spec.solve.surface_listeners_m.push_back({r * d[0], r * d[1], r * d[2]});
   spec.lead_steps = static_cast<int>(std::ceil(spec.a_m / (c_m_s * dt)));
   // The retarded window every radius hears: from lead_steps before the pulse to the end of the
   // outermost radius' record (the tail); nearer radii's later samples are dropped.
@@ -193,20 +190,16 @@ model::PanBankHeader pan_header(const PanSpec& spec) {
   return h;
 }
 
-std::vector<std::int32_t> proxy_delay_steps(const PanSpec& spec, std::size_t proxy) {
-  std::vector<std::int32_t> out;
-  for (const auto& d : pan::direction_vertices(spec.divisions))
-    out.push_back(pan::support_delay_steps(d, spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1],
-                                           spec.solve.problem.c_m_s, spec.solve.problem.dt_s));
-  return out;
-}
-
 std::vector<PanTask> pan_tasks(const PanSpec& spec) {
   std::vector<PanTask> tasks;
   for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p)
     for (int field : spec.solve.fields)
       tasks.push_back({p, field, fmt::format("p{:03}-f{}", p, field)});
   return tasks;
+}
+
+double pan_series_per_task(const PanSpec& spec) {
+  return static_cast<double>(pan::vertex_count(spec.divisions)) * static_cast<double>(spec.radii_m.size() + 1);
 }
 
 }  // namespace clatter::jobs

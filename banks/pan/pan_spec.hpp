@@ -17,7 +17,9 @@ namespace clatter::jobs {
 const io::Schema& pan_schema();
 
 struct PanSpec {
-  SolveSpec solve;                     // one proxy's solve; body and listeners set per proxy
+  // One proxy's solve, body set per proxy; its Kirchhoff surface hears the directions x radii and
+  // the far fields (build_proxy, through run_solve's SurfaceHook).
+  SolveSpec solve;
   std::vector<std::array<double, 2>> proxies_bc_m;  // (B, C)
   double a_m = 0.5;
   std::vector<double> radii_m;         // ascending, whole numbers of steps: shift[i] * c * dt
@@ -57,8 +59,6 @@ PanSpec make_pan_spec(const PanParams& params);
 PanSpec make_pan_spec(const io::Config& config);
 
 model::PanBankHeader pan_header(const PanSpec& spec);
-// Per direction: the proxy's support-distance alignment (kernels/pan/fit.hpp).
-std::vector<std::int32_t> proxy_delay_steps(const PanSpec& spec, std::size_t proxy);
 
 // The sweep (sweep/sweep.hpp): one task per proxy and solved field, named "pNNN-fK".
 struct PanTask {
@@ -67,5 +67,7 @@ struct PanTask {
   std::string name;
 };
 std::vector<PanTask> pan_tasks(const PanSpec& spec);
+// Series a task hears through the Kirchhoff surface: directions x (radii + the far field).
+double pan_series_per_task(const PanSpec& spec);
 
 }  // namespace clatter::jobs

@@ -94,7 +94,7 @@ struct FieldRecord {
 // One field: start, step with the health check and progress, gather the corners (and the
 // Kirchhoff surface) to rank 0. Returns the record on rank 0, nothing elsewhere.
 FieldRecord solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fdtd::Engine& engine,
-                        Progress& progress) {
+                        Progress& progress, const SurfaceHook& hook) {
   fdtd::Problem problem = spec.problem;
   problem.field = spec.fields[fi];
   const int steps = spec.n_samples - 1;
@@ -139,12 +139,13 @@ FieldRecord solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fd
   packs.clear();
   for (const auto& d : spec.far_directions) out.far.push_back(fdtd::far_field(surface_field, d));
   for (const auto& x : spec.surface_listeners_m) out.near.push_back(fdtd::pressure_at(surface_field, x));
+  if (hook) hook(fi, surface_field);
   return out;
 }
 
 }  // namespace
 
-SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_interval_s) {
+SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_interval_s, const SurfaceHook& hook) {
   const fdtd::Grid& grid = spec.problem.grid;
   std::optional<mpi::CartTopology> topo;
   mpi::agree(comm, [&] { topo.emplace(comm, grid.n); });
@@ -185,7 +186,7 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
   const auto op = build_operator(comm, spec, owned, result);
   fdtd::Engine engine(*op, halo);
   for (std::size_t fi = 0; fi < spec.fields.size(); ++fi) {
-    auto record = solve_field(comm, spec, fi, engine, progress);
+    auto record = solve_field(comm, spec, fi, engine, progress, hook);
     if (mpi::rank(comm) == 0) {
       result.series.push_back(std::move(record.series));
       result.far.push_back(std::move(record.far));

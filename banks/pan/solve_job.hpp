@@ -5,6 +5,7 @@
 #include <mpi.h>
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,12 @@ struct SolveResult {
   double bytes = 0;     // solver storage, all ranks
 };
 
-SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_interval_s);
+// Called on rank 0 with each field's assembled Kirchhoff surface (index into spec.fields) before
+// it is freed: what a caller hears through the surface beyond the spec's own lists (a PAN task's
+// directions, each aligned by its own fraction of a step).
+using SurfaceHook = std::function<void(std::size_t field_index, const kernels::fdtd::SurfaceField& surface)>;
+
+SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_interval_s, const SurfaceHook& hook = {});
 
 // `clatter-bank solve`: one solve of the config, written as clatter-fdtd-raw.
 Command add_solve_command(CLI::App& parent);

@@ -330,7 +330,7 @@ SurfaceField assemble_surface(const Problem& problem, double radius_m, int n_sam
   return s;
 }
 
-KirchhoffSeries far_field(const SurfaceField& s, const std::array<double, 3>& d) {
+KirchhoffSeries far_field(const SurfaceField& s, const std::array<double, 3>& d, double advance_s) {
   Stage stage("far field");
   const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   if (!(norm > 0)) throw std::invalid_argument("far_field: the direction is zero");
@@ -348,7 +348,7 @@ KirchhoffSeries far_field(const SurfaceField& s, const std::array<double, 3>& d)
       double dy = 0;
       for (int a = 0; a < 3; ++a) dy += u[a] * im.flip[a] * el.centre_m[a];
       const double nd = el.sign * im.flip[el.axis] * u[el.axis];
-      const double delay = dy / (s.c_m_s * s.dt_s);
+      const double delay = dy / (s.c_m_s * s.dt_s) + advance_s / s.dt_s;
       // (F): the dp/dt term goes to the differentiated set.
       sum.add(delay, 0.0, -im.sign, im.sign * nd / s.c_m_s, &s.p[e * ns], &s.dpdn[e * ns]);
     }
@@ -356,7 +356,7 @@ KirchhoffSeries far_field(const SurfaceField& s, const std::array<double, 3>& d)
   return sum.result(s.dx_m * s.dx_m / (4 * std::numbers::pi), s.t_first_s, s.dt_s);
 }
 
-KirchhoffSeries pressure_at(const SurfaceField& s, const std::array<double, 3>& x) {
+KirchhoffSeries pressure_at(const SurfaceField& s, const std::array<double, 3>& x, double advance_s) {
   Stage stage("Kirchhoff point");
   if (std::hypot(x[0], x[1], x[2]) <= outside_radius_m(s.elements, s.dx_m))
     throw std::invalid_argument("pressure_at: the point is not outside the Kirchhoff surface");
@@ -374,7 +374,7 @@ KirchhoffSeries pressure_at(const SurfaceField& s, const std::array<double, 3>& 
       }
       const double r = std::sqrt(r2);
       const double nr = el.sign * im.flip[el.axis] * rv[el.axis] / r;
-      const double delay = -r / (s.c_m_s * s.dt_s);
+      const double delay = (advance_s - r / s.c_m_s) / s.dt_s;
       sum.add(delay, im.sign * nr / r2, -im.sign / r, im.sign * nr / (s.c_m_s * r), &s.p[e * ns], &s.dpdn[e * ns]);
     }
   }

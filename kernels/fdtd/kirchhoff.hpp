@@ -95,9 +95,11 @@ struct KirchhoffSeries {
   int valid_end = 0;
 };
 
-// (F) for a unit direction d: the far field R p, in Pa m per unit acceleration.
-KirchhoffSeries far_field(const SurfaceField& surface, const std::array<double, 3>& d);
-// (K) at a point x outside the surface (|x| > outside_radius_m).
-KirchhoffSeries pressure_at(const SurfaceField& surface, const std::array<double, 3>& x_m);
+// (F) for a unit direction d: the far field R p, in Pa m per unit acceleration. `advance_s`
+// samples the series that much later: sample k holds the value at t_first_s + k dt + advance_s
+// (a fraction of a step aligns a PAN direction exactly, kernels/pan/fit.hpp).
+KirchhoffSeries far_field(const SurfaceField& surface, const std::array<double, 3>& d, double advance_s = 0);
+// (K) at a point x outside the surface (|x| > outside_radius_m), sampled like far_field.
+KirchhoffSeries pressure_at(const SurfaceField& surface, const std::array<double, 3>& x_m, double advance_s = 0);
 
 }  // namespace clatter::kernels::fdtd

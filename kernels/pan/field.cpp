@@ -5,6 +5,7 @@
 
 #include "kernels/fdtd/geometry.hpp"
 #include "kernels/pan/directions.hpp"
+#include "kernels/pan/fit.hpp"
 #include "kernels/pan/radial.hpp"
 #include "kernels/pan/wavelet.hpp"
 
@@ -57,10 +58,8 @@ Series evaluate_sum(const model::PanBankHeader& bank, const model::PanProxy& pro
       if (w.weight[v] != 0)
         accumulate(directions.at(static_cast<std::size_t>(w.vertex[v])), bank.values(), radial, scale * w.weight[v], c);
   }
-  double delay = 0;  // the direction's alignment, interpolated like the signals
-  if (!proxy.delay_steps.empty())
-    for (std::size_t v = 0; v < static_cast<std::size_t>(w.count); ++v)
-      delay += w.weight[v] * proxy.delay_steps.at(static_cast<std::size_t>(w.vertex[v]));
+  // Every direction was stored aligned by its support distance (fit.hpp): shift by the query's.
+  const double delay = support_delay_samples({y[0] / r, y[1] / r, y[2] / r}, bank.a_m, proxy.b_m, proxy.c_m, bank.c_m_s, bank.dt_s);
   const Wavelet& wavelet = cached_wavelet(bank.length);
   wavelet.inverse(c);
   const double levels_dropped = std::log2(static_cast<double>(bank.length) / static_cast<double>(n));

@@ -14,9 +14,10 @@ Fitter::Fitter(std::vector<double> radii_m, std::vector<int> shift_steps, std::s
       throw std::invalid_argument("PAN fit: the radii must be positive and ascending");
 }
 
-int support_delay_steps(const std::array<double, 3>& d, double a_m, double b_m, double c_m, double c_m_s, double dt_s) {
+double support_delay_samples(const std::array<double, 3>& d, double a_m, double b_m, double c_m, double c_m_s,
+                             double dt_s) {
   const double h = std::sqrt(a_m * a_m * d[0] * d[0] + b_m * b_m * d[1] * d[1] + c_m * c_m * d[2] * d[2]);
-  return static_cast<int>(std::lround(h / (c_m_s * dt_s)));
+  return h / (c_m_s * dt_s);
 }
 
 model::SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon,

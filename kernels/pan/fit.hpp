@@ -21,7 +21,7 @@ class Fitter {
   Fitter(std::vector<double> radii_m, std::vector<int> shift_steps, std::size_t length);
 
   // series[i]: p(R_i, t_n) for n = 0 .. n_samples-1 (t_n = t_first + n dt). `delay_steps` aligns
-  // this direction further: coefficient sample n is p(R_i, t_first + (n + shift_i - delay) dt).
+  // this direction further by whole steps: coefficient sample n is p(R_i, t_first + (n + shift_i - delay) dt).
   // far_field: length() samples on the same retarded frame, sample n the far field R p at
   // tau = t_first + (n + shift_i - delay) dt - R_i / c. The result is one direction of a bank's
   // field as stored (model/pan_bank.hpp).
@@ -37,11 +37,14 @@ class Fitter {
   Wavelet wavelet_;
 };
 
-// The direction's first-arrival advance in whole steps: the ellipsoid's support distance
-// h(d) = sqrt(A^2 dx^2 + B^2 dy^2 + C^2 dz^2) over c dt. Aligning each direction by it (on top of
-// R/c) lines up the pulses of neighbouring directions, so interpolating between them does not smear
-// a pulse that arrives earlier on one side of the body (docs/pan.md).
-int support_delay_steps(const std::array<double, 3>& direction, double a_m, double b_m, double c_m, double c_m_s,
-                        double dt_s);
+// The direction's first-arrival advance in steps: the ellipsoid's support distance
+// h(d) = sqrt(A^2 dx^2 + B^2 dy^2 + C^2 dz^2) (d a unit vector) over c dt. Aligning each direction
+// by it (on top of R/c) lines up the pulses of neighbouring directions, so interpolating between
+// them does not smear a pulse that arrives earlier on one side of the body (docs/pan.md). A bank
+// stores each direction aligned by exactly this (its whole steps in the fit, its fraction through
+// the Kirchhoff surface), and the evaluator shifts by it at the query direction: any two direction
+// sets then agree on the time frame, and nothing about it is stored.
+double support_delay_samples(const std::array<double, 3>& direction, double a_m, double b_m, double c_m, double c_m_s,
+                             double dt_s);
 
 }  // namespace clatter::kernels::pan

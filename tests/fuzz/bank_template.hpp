@@ -33,7 +33,6 @@ inline model::PanBank template_bank() {
     model::PanProxy proxy;
     proxy.b_m = 0.5 - 0.1 * p;
     proxy.c_m = 0.2;
-    proxy.delay_steps = {0, 3, 5};
     for (int f : {0, 2}) proxy.fields[static_cast<std::size_t>(f)] = {template_terms(0), template_terms(2), template_terms(8)};
     bank.proxies.push_back(proxy);
   }

@@ -56,6 +56,8 @@ Built build(double epsilon, int field_index = 1) {
   b.field = field_index;
   b.shifts = shifts;
   b.bank.radii_m = radii;
+  // A point body (A = B = C = 0): no support-distance alignment, as the synthetic field has none.
+  b.bank.a_m = 0;
   b.bank.length = static_cast<std::uint32_t>(length);
   b.bank.dt_s = kDt;
   b.bank.t_first_s = -i0 * kDt;
