@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "core/errors.hpp"
 #include "core/stage_log.hpp"
@@ -62,7 +63,7 @@ namespace {
 
 // The far field on the fit's frame: coefficient sample n is at the retarded time
 // tau = t_first + (n - lead - delay) dt, t_first the solve's first sample (fit.hpp, pan_spec.hpp).
-std::vector<double> aligned_far_field(const PanSpec& spec, const kernels::fdtd::KirchhoffSeries& far, int delay_steps) {
+std::vector<double> frame_far_field(const PanSpec& spec, const kernels::fdtd::KirchhoffSeries& far, int delay_steps) {
   const double dt = spec.solve.problem.dt_s, t_first = -spec.solve.i_time_zero * dt;
   const long offset = std::lround((t_first - far.t_first_s) / dt) - spec.lead_steps - delay_steps;
   std::vector<double> out(spec.length, 0.0);
@@ -111,7 +112,7 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
         const auto p = fdtd::pressure_at(surface, {r * d[0], r * d[1], r * d[2]}, advance_s);
         for (std::size_t k = 0; k < ns; ++k) near[i][k] = static_cast<float>(p.value[k]);
       }
-      const auto far = aligned_far_field(spec, fdtd::far_field(surface, d, advance_s), whole);
+      const auto far = frame_far_field(spec, fdtd::far_field(surface, d, advance_s), whole);
       dirs.push_back(fitter.fit(series, ns, spec.epsilon, whole, far));
     }
     std::vector<float> extra(extra_listeners_m.size() * ns);
@@ -123,6 +124,57 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   };
   run_solve(comm, s, progress_interval_s, hear);
   if (mpi::rank(comm) != 0) return {};
+  return out;
+}
+
+std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
+                                      const std::array<double, 3>& d) {
+  const double dt = spec.solve.problem.dt_s;
+  const double delay = pan::support_delay_samples(d, spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1],
+                                                  spec.solve.problem.c_m_s, dt);
+  const int whole = static_cast<int>(std::floor(delay));
+  return frame_far_field(spec, kernels::fdtd::far_field(surface, d, -(delay - whole) * dt), whole);
+}
+
+double far_field_miss(const std::vector<double>& interpolated, const std::vector<double>& truth, double floor) {
+  double num = 0, den = 0;
+  for (std::size_t n = 0; n < truth.size(); ++n) {
+    num += (interpolated[n] - truth[n]) * (interpolated[n] - truth[n]);
+    den += truth[n] * truth[n];
+  }
+  return std::sqrt(num / std::max(den, floor * floor));
+}
+
+DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
+                                      double tolerance, int max_levels, std::size_t max_vertices) {
+  DirectionRefinement out{pan::DirectionMesh(spec.divisions, max_levels), 0, 0};
+  auto& mesh = out.mesh;
+  std::unordered_map<std::int64_t, std::vector<double>> far;  // by lattice point
+  auto at = [&](const pan::LatticePoint& p) -> const std::vector<double>& {
+    const std::int64_t key = (static_cast<std::int64_t>(p.a) << 32) | static_cast<std::uint32_t>(p.b);
+    auto it = far.find(key);
+    if (it == far.end()) {
+      it = far.emplace(key, aligned_far_field(spec, proxy, surface, mesh.direction(p))).first;
+      ++out.far_fields;
+    }
+    return it->second;
+  };
+  double strongest = 0;  // the floor: a tenth of the strongest vertex amplitude (1 % of its energy)
+  for (const auto& v : mesh.vertices()) {
+    double e = 0;
+    for (double x : at(v)) e += x * x;
+    strongest = std::max(strongest, std::sqrt(e));
+  }
+  std::vector<double> sum(spec.length);
+  auto miss = [&](const pan::LatticePoint& p, const pan::DirectionWeights& w) {
+    std::fill(sum.begin(), sum.end(), 0.0);
+    for (int k = 0; k < w.count; ++k) {
+      const auto& f = at(mesh.vertices()[static_cast<std::size_t>(w.vertex[static_cast<std::size_t>(k)])]);
+      for (std::size_t n = 0; n < sum.size(); ++n) sum[n] += w.weight[static_cast<std::size_t>(k)] * f[n];
+    }
+    return far_field_miss(sum, at(p), 0.1 * strongest);
+  };
+  out.splits = pan::refine(mesh, miss, tolerance, max_vertices);
   return out;
 }
 

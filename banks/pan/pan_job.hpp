@@ -11,6 +11,8 @@
 
 #include "io/config.hpp"
 #include "io/pan_bank.hpp"
+#include "kernels/fdtd/kirchhoff.hpp"
+#include "kernels/pan/direction_mesh.hpp"
 #include "banks/pan/pan_spec.hpp"
 #include "banks/pan/solve_job.hpp"
 #include "sweep/sweep.hpp"
@@ -26,6 +28,25 @@ struct ProxyResult {
 };
 ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                         const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s);
+
+// The far field of proxy `proxy` in unit direction d on a bank's coefficient frame (spec.length
+// samples), aligned by the direction's exact support distance like every stored direction.
+std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
+                                      const std::array<double, 3>& d);
+
+// Issue 32, in progress (not yet in the bank): the field's adaptive direction set, the layout of
+// spec.divisions split where quadratic interpolation of the far field misses it at a split point
+// by more than `tolerance` (relative L2; directions weaker than a tenth of the strongest vertex's
+// amplitude, 1 % of its energy, are judged against that tenth).
+struct DirectionRefinement {
+  kernels::pan::DirectionMesh mesh;
+  int splits = 0;
+  std::size_t far_fields = 0;  // far fields heard through the surface (vertices and split points)
+};
+DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
+                                      double tolerance, int max_levels, std::size_t max_vertices);
+// The miss measure of refine_directions: |interpolated - truth| / max(|truth|, floor), L2 over time.
+double far_field_miss(const std::vector<double>& interpolated, const std::vector<double>& truth, double floor);
 
 // Solves and fits one task on `group`; the writer of its result on the group's rank 0.
 TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s);
