@@ -89,6 +89,7 @@ std::unique_ptr<fdtd::Operator> build_operator(MPI_Comm comm, const SolveSpec& s
 struct FieldRecord {
   std::vector<float> series;                       // [listener][sample]
   std::vector<fdtd::KirchhoffSeries> far, near;  // per far direction, per surface listener
+  double surface_s = 0;                           // rank 0's time hearing through the surface
 };
 
 // One field: start, step with the health check and progress, gather the corners (and the
@@ -134,12 +135,14 @@ FieldRecord solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fd
   }
   if (mpi::rank(comm) != 0) return out;
   Stage stage("Kirchhoff surface");
+  const auto t_surface = std::chrono::steady_clock::now();
   const fdtd::SurfaceField surface_field =
       fdtd::assemble_surface(problem, spec.kirchhoff_radius_m, spec.n_samples, -spec.i_time_zero * problem.dt_s, packs);
   packs.clear();
   for (const auto& d : spec.far_directions) out.far.push_back(fdtd::far_field(surface_field, d));
   for (const auto& x : spec.surface_listeners_m) out.near.push_back(fdtd::pressure_at(surface_field, x));
   if (hook) hook(fi, surface_field);
+  out.surface_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_surface).count();
   return out;
 }
 
@@ -181,12 +184,14 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
   const fdtd::FlushSubnormals flush;
   Progress progress(progress_interval_s, static_cast<long long>(steps) * static_cast<long long>(spec.fields.size()), cells);
   const auto t_begin = std::chrono::steady_clock::now();
+  double surface_s = 0;  // rank 0's hearing through the Kirchhoff surface, which the grid waits for
   // One operator and one engine for every field: the cut-cell geometry, the layer and the storage
   // are built once.
   const auto op = build_operator(comm, spec, owned, result);
   fdtd::Engine engine(*op, halo);
   for (std::size_t fi = 0; fi < spec.fields.size(); ++fi) {
     auto record = solve_field(comm, spec, fi, engine, progress, hook);
+    surface_s += record.surface_s;
     if (mpi::rank(comm) == 0) {
       result.series.push_back(std::move(record.series));
       result.far.push_back(std::move(record.far));
@@ -195,9 +200,13 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   const double updates = static_cast<double>(cells) * steps * static_cast<double>(spec.fields.size());
-  result.cell_updates_per_s = updates / elapsed;
-  spdlog::info("solve: {:.3g} cell-updates in {:.3g} s: {:.3g} cell-updates/s", updates, elapsed,
-               result.cell_updates_per_s);
+  result.cell_updates_per_s = updates / std::max(elapsed - surface_s, 1e-9);
+  if (surface_s > 0)
+    spdlog::info("solve: {:.3g} cell-updates in {:.3g} s: {:.3g} cell-updates/s; {:.3g} s more hearing through the "
+                 "Kirchhoff surface", updates, elapsed - surface_s, result.cell_updates_per_s, surface_s);
+  else
+    spdlog::info("solve: {:.3g} cell-updates in {:.3g} s: {:.3g} cell-updates/s", updates, elapsed,
+                 result.cell_updates_per_s);
   return result;
 }
 
