@@ -84,7 +84,8 @@ def main():
             "--set", f"kirchhoff.radius_m={0.5 + 3 * a.dx!r}", "--set", f"kirchhoff.far_directions={text}"], check=True)
     with h5py.File(a.out) as f:
         far = {int(k[1:]): f["far"][k][...].astype(float) for k in f["far"] if k.startswith("p")}
-    # Support-distance advance per direction, whole samples (kernels/pan/fit.cpp support_delay_steps).
+    # Support-distance advance per direction in whole samples, as bank format 2 aligned (format 3
+    # aligns exactly, kernels/pan/fit.hpp; clatter-pan-direction-study measures with that).
     delay = [round(np.sqrt((0.5 * u[0]) ** 2 + (a.b * u[1]) ** 2 + (a.c * u[2]) ** 2) / (343.2 * a.dt)) for u in dirs]
     n_samples = next(iter(far.values())).shape[1]
     k = np.arange(n_samples)

@@ -72,12 +72,7 @@ int study(mpi::Session& session, int argc, char** argv) {
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<std::array<double, 3>> points;
     std::vector<std::vector<double>> truth;
-    double strongest = 0;
-    for (const auto& d : pan::direction_vertices(spec.divisions)) {
-      double e = 0;
-      for (double x : jobs::aligned_far_field(spec, 0, surface, d)) e += x * x;
-      strongest = std::max(strongest, std::sqrt(e));
-    }
+    const double floor = jobs::far_field_floor(spec, 0, surface);
     for (int i = 0; i < tests; ++i) {
       std::array<double, 3> d{u(rng), u(rng), u(rng)};
       const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
@@ -89,13 +84,10 @@ int study(mpi::Session& session, int argc, char** argv) {
       std::vector<std::vector<double>> at(mesh.size());
       for (std::size_t v = 0; v < mesh.size(); ++v) at[v] = jobs::aligned_far_field(spec, 0, surface, mesh.direction(v));
       std::vector<double> misses;
+      std::vector<double> sum(spec.length);
       for (std::size_t i = 0; i < points.size(); ++i) {
-        const auto w = mesh.locate(points[i]);
-        std::vector<double> sum(spec.length, 0.0);
-        for (int k = 0; k < w.count; ++k)
-          for (std::size_t n = 0; n < sum.size(); ++n)
-            sum[n] += w.weight[static_cast<std::size_t>(k)] * at[static_cast<std::size_t>(w.vertex[static_cast<std::size_t>(k)])][n];
-        misses.push_back(jobs::far_field_miss(sum, truth[i], 0.1 * strongest));
+        pan::blend(mesh.locate(points[i]), [&](std::size_t v) -> const std::vector<double>& { return at[v]; }, sum);
+        misses.push_back(jobs::far_field_miss(sum, truth[i], floor));
       }
       int above = 0;
       for (double m : misses) above += m > 0.05;

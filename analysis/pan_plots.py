@@ -11,7 +11,7 @@ Writes to DIR:
                                  first --proxies proxies for the errors against raw FDTD signals
                                  at held-out radii and directions between vertices
   proxies_p3.png             (b) p3 at one point for several proxies (Figure 4)
-  direction_fit.png          (c) one direction: raw FDTD at the 5 radii, shifted by R/c, and the
+  direction_fit.png          (c) one direction: raw FDTD at the radii up to 1.5 m, shifted by R/c, and the
                                  bank's fit (Figure 3)
 """
 import argparse
@@ -63,9 +63,10 @@ def bank_info(bank):
 
 
 def raw_solve(args, config, tmp, b, c, points, fields="[1, 2, 3, 4, 5, 6]"):
-    """The FDTD signals at `points` for proxy (0.5, b, c) on the grid the bank used."""
+    """The FDTD signals at `points` for proxy (0.5, b, c) on the bank's cell size and step, on a grid
+    that just holds the points (the bank hears its radii, out to 5 m, through a Kirchhoff surface)."""
     dx = float(toml_value(config, "grid", "dx_m"))
-    radii = [float(v) for v in toml_value(config, "fit", "radii_m").strip("[]").split(",")]
+    reach = max(float(np.linalg.norm(p)) for p in points)
     out = os.path.join(tmp, "raw.h5")
     pts = "[" + ", ".join("[" + ", ".join(repr(float(v)) for v in p) + "]" for p in points) + "]"
     cmd = shlex.split(args.mpiexec) + [args.bin, "solve", "-o", out, "--progress-interval", "0", "--log-level", "warn"]
@@ -79,12 +80,11 @@ def raw_solve(args, config, tmp, b, c, points, fields="[1, 2, 3, 4, 5, 6]"):
         scheme = toml_value(config, "solver", "scheme").strip('"')
     except KeyError:
         scheme = "me4"
-    # The domain of the bank's own solves (banks/pan/pan_spec.cpp): 3 cells past the largest radius, and
-    # 8 more for me4's blend into the PML.
+    # 3 cells past the farthest point for its stencil, and 8 more for me4's blend into the PML.
     margin = 3 + (8 if scheme == "me4" else 0)
     cmd += ["--set", f"solver.scheme={scheme}"]
-    cmd += ["--set", f"grid.half_width_m={max(radii) + margin * dx!r}", "--set", "grid.octant=true",
-            "--set", f"time.duration_s={max(radii) / c_m_s + tail!r}", "--set", "object.a_m=0.5",
+    cmd += ["--set", f"grid.half_width_m={reach + margin * dx!r}", "--set", "grid.octant=true",
+            "--set", f"time.duration_s={reach / c_m_s + tail!r}", "--set", "object.a_m=0.5",
             "--set", f"object.b_m={b!r}", "--set", f"object.c_m={c!r}", "--set", f"solve.fields={fields}",
             "--set", f"listeners.points_m={pts}"]
     run(cmd)
@@ -175,16 +175,17 @@ def direction_figure(args, bank, tmp):
     info = bank_info(bank)
     d = info["directions"][20]
     b, c = info["b"][-1], info["c_m"][-1]
-    points = [r * d for r in info["radii"]]
+    radii = [r for r in info["radii"] if r <= 1.55]  # the near radii: a grid to 5 m would be huge
+    points = [r * d for r in radii]
     t_raw, fields = raw_solve(args, args.config, tmp, b, c, points, fields="[3]")
     raw = fields[3]
     fig, ax = plt.subplots(1, 3, figsize=(13, 3.8), sharey=True)
-    for i, r in enumerate(info["radii"]):
+    for i, r in enumerate(radii):
         ax[0].plot(1e3 * t_raw, raw[i], label=f"R = {r:.2f} m")
         ax[1].plot(1e3 * (t_raw - r / info["c"]), raw[i] * r)
         t, p = probe(args, bank, b, c, 3, points[i])
         ax[2].plot(1e3 * (t - r / info["c"]), p * r)
-    ax[0].set(xlabel="t [ms]", ylabel="R p3", title="FDTD at 5 radii (p3)")
+    ax[0].set(xlabel="t [ms]", ylabel="R p3", title=f"FDTD at {len(radii)} radii (p3)")
     ax[0].set_ylabel("p3 (left) / R p3 [Pa m per m/s^2]")
     ax[0].legend(fontsize=7)
     ax[1].set(xlabel="t - R/c [ms]", title="shifted by R/c, times R")

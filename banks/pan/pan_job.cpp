@@ -74,6 +74,20 @@ std::vector<double> frame_far_field(const PanSpec& spec, const kernels::fdtd::Ki
   return out;
 }
 
+// How a stored direction is aligned (kernels/pan/fit.hpp support_delay_samples): its whole steps
+// go to the fit, its fraction to the surface's delay sums as an advance.
+struct Alignment {
+  int whole_steps = 0;
+  double advance_s = 0;
+};
+Alignment alignment(const PanSpec& spec, std::size_t proxy, const std::array<double, 3>& d) {
+  const double dt = spec.solve.problem.dt_s;
+  const double delay = pan::support_delay_samples(d, spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1],
+                                                  spec.solve.problem.c_m_s, dt);
+  const int whole = static_cast<int>(std::floor(delay));
+  return {whole, -(delay - whole) * dt};
+}
+
 }  // namespace
 
 ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
@@ -95,7 +109,6 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   for (int k : spec.shift_steps) shifts.push_back(k - spec.lead_steps);
   const pan::Fitter fitter(spec.radii_m, shifts, spec.length);
   const std::size_t ns = static_cast<std::size_t>(s.n_samples), m = spec.radii_m.size();
-  const double dt = s.problem.dt_s;
   // Rank 0, per field, while its surface is alive: every direction heard at its radii and at
   // infinity, aligned by its support distance (the whole steps in the fit, the fraction here).
   auto hear = [&](std::size_t fi, const fdtd::SurfaceField& surface) {
@@ -104,16 +117,13 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
     std::vector<const float*> series;
     for (const auto& v : near) series.push_back(v.data());
     for (const auto& d : directions) {
-      const double delay = pan::support_delay_samples(d, spec.a_m, b_m, c_m, s.problem.c_m_s, dt);
-      const int whole = static_cast<int>(std::floor(delay));
-      const double advance_s = -(delay - whole) * dt;
+      const Alignment a = alignment(spec, proxy, d);
       for (std::size_t i = 0; i < m; ++i) {
         const double r = spec.radii_m[i];
-        const auto p = fdtd::pressure_at(surface, {r * d[0], r * d[1], r * d[2]}, advance_s);
+        const auto p = fdtd::pressure_at(surface, {r * d[0], r * d[1], r * d[2]}, a.advance_s);
         for (std::size_t k = 0; k < ns; ++k) near[i][k] = static_cast<float>(p.value[k]);
       }
-      const auto far = frame_far_field(spec, fdtd::far_field(surface, d, advance_s), whole);
-      dirs.push_back(fitter.fit(series, ns, spec.epsilon, whole, far));
+      dirs.push_back(fitter.fit(series, ns, spec.epsilon, a.whole_steps, aligned_far_field(spec, proxy, surface, d)));
     }
     std::vector<float> extra(extra_listeners_m.size() * ns);
     for (std::size_t l = 0; l < extra_listeners_m.size(); ++l) {
@@ -129,11 +139,18 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
 
 std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                       const std::array<double, 3>& d) {
-  const double dt = spec.solve.problem.dt_s;
-  const double delay = pan::support_delay_samples(d, spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1],
-                                                  spec.solve.problem.c_m_s, dt);
-  const int whole = static_cast<int>(std::floor(delay));
-  return frame_far_field(spec, kernels::fdtd::far_field(surface, d, -(delay - whole) * dt), whole);
+  const Alignment a = alignment(spec, proxy, d);
+  return frame_far_field(spec, kernels::fdtd::far_field(surface, d, a.advance_s), a.whole_steps);
+}
+
+double far_field_floor(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface) {
+  double strongest = 0;
+  for (const auto& d : pan::direction_vertices(spec.divisions)) {
+    double e = 0;
+    for (double x : aligned_far_field(spec, proxy, surface, d)) e += x * x;
+    strongest = std::max(strongest, std::sqrt(e));
+  }
+  return 0.1 * strongest;
 }
 
 double far_field_miss(const std::vector<double>& interpolated, const std::vector<double>& truth, double floor) {
@@ -149,30 +166,20 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
                                       double tolerance, int max_levels, std::size_t max_vertices) {
   DirectionRefinement out{pan::DirectionMesh(spec.divisions, max_levels), 0, 0};
   auto& mesh = out.mesh;
-  std::unordered_map<std::int64_t, std::vector<double>> far;  // by lattice point
+  std::unordered_map<std::int64_t, std::vector<double>> far;  // by lattice point: vertices and split points
   auto at = [&](const pan::LatticePoint& p) -> const std::vector<double>& {
-    const std::int64_t key = (static_cast<std::int64_t>(p.a) << 32) | static_cast<std::uint32_t>(p.b);
-    auto it = far.find(key);
+    auto it = far.find(p.key());
     if (it == far.end()) {
-      it = far.emplace(key, aligned_far_field(spec, proxy, surface, mesh.direction(p))).first;
+      it = far.emplace(p.key(), aligned_far_field(spec, proxy, surface, mesh.direction(p))).first;
       ++out.far_fields;
     }
     return it->second;
   };
-  double strongest = 0;  // the floor: a tenth of the strongest vertex amplitude (1 % of its energy)
-  for (const auto& v : mesh.vertices()) {
-    double e = 0;
-    for (double x : at(v)) e += x * x;
-    strongest = std::max(strongest, std::sqrt(e));
-  }
+  const double floor = far_field_floor(spec, proxy, surface);
   std::vector<double> sum(spec.length);
   auto miss = [&](const pan::LatticePoint& p, const pan::DirectionWeights& w) {
-    std::fill(sum.begin(), sum.end(), 0.0);
-    for (int k = 0; k < w.count; ++k) {
-      const auto& f = at(mesh.vertices()[static_cast<std::size_t>(w.vertex[static_cast<std::size_t>(k)])]);
-      for (std::size_t n = 0; n < sum.size(); ++n) sum[n] += w.weight[static_cast<std::size_t>(k)] * f[n];
-    }
-    return far_field_miss(sum, at(p), 0.1 * strongest);
+    pan::blend(w, [&](std::size_t v) -> const std::vector<double>& { return at(mesh.vertices()[v]); }, sum);
+    return far_field_miss(sum, at(p), floor);
   };
   out.splits = pan::refine(mesh, miss, tolerance, max_vertices);
   return out;

@@ -47,6 +47,8 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
                                       double tolerance, int max_levels, std::size_t max_vertices);
 // The miss measure of refine_directions: |interpolated - truth| / max(|truth|, floor), L2 over time.
 double far_field_miss(const std::vector<double>& interpolated, const std::vector<double>& truth, double floor);
+// Its floor: a tenth of the strongest far field (L2) among the layout's directions, 1 % of its energy.
+double far_field_floor(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface);
 
 // Solves and fits one task on `group`; the writer of its result on the group's rank 0.
 TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s);

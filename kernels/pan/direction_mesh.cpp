@@ -8,7 +8,6 @@
 namespace clatter::kernels::pan {
 namespace {
 
-std::int64_t key(const LatticePoint& p) { return (static_cast<std::int64_t>(p.a) << 32) | static_cast<std::uint32_t>(p.b); }
 LatticePoint midpoint(const LatticePoint& p, const LatticePoint& q) { return {(p.a + q.a) / 2, (p.b + q.b) / 2}; }
 
 // The children of an element with corners c and midpoints m (m[0] = M01, m[1] = M12, m[2] = M20),
@@ -84,7 +83,7 @@ std::array<double, 3> DirectionMesh::direction(const LatticePoint& p) const {
 }
 
 int DirectionMesh::vertex_at(const LatticePoint& p) {
-  const auto [it, added] = index_.try_emplace(key(p), static_cast<int>(vertices_.size()));
+  const auto [it, added] = index_.try_emplace(p.key(), static_cast<int>(vertices_.size()));
   if (added) vertices_.push_back(p);
   return it->second;
 }

@@ -12,6 +12,7 @@
 // root. A refined element's neighbour is not refined with it: along their shared edge the fine side
 // interpolates through five nodes and the coarse side through three, both through the same stored
 // values, so the interpolant may step there by at most what the refinement tolerates.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -25,6 +26,7 @@ namespace clatter::kernels::pan {
 struct LatticePoint {
   std::int32_t a = 0, b = 0;
   bool operator==(const LatticePoint&) const = default;
+  std::int64_t key() const { return (static_cast<std::int64_t>(a) << 32) | static_cast<std::uint32_t>(b); }  // for maps
 };
 
 class DirectionMesh {
@@ -82,6 +84,17 @@ class DirectionMesh {
 // caller's values at mesh.direction(v)) misses the true value at mesh.direction(point), in the
 // caller's measure. Stops at max_levels or after `max_vertices` vertices. Returns the splits made.
 using DirectionMiss = std::function<double(const LatticePoint& point, const DirectionWeights& w)>;
+
+// out = sum_k w.weight[k] series(w.vertex[k]): a per-vertex series interpolated at a direction.
+// `series` maps a vertex index to its samples (all of out.size()).
+template <class SeriesOf>
+void blend(const DirectionWeights& w, SeriesOf&& series, std::vector<double>& out) {
+  std::fill(out.begin(), out.end(), 0.0);
+  for (int k = 0; k < w.count; ++k) {
+    const auto& s = series(static_cast<std::size_t>(w.vertex[static_cast<std::size_t>(k)]));
+    for (std::size_t n = 0; n < out.size(); ++n) out[n] += w.weight[static_cast<std::size_t>(k)] * s[n];
+  }
+}
 int refine(DirectionMesh& mesh, const DirectionMiss& miss, double tolerance, std::size_t max_vertices);
 
 }  // namespace clatter::kernels::pan

@@ -28,7 +28,6 @@ class Fitter {
   model::SparseTerms fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon,
                          int delay_steps, const std::vector<double>& far_field) const;
 
-  std::size_t values() const { return radii_m_.size() + 1; }
   std::size_t length() const { return wavelet_.length(); }
 
  private:

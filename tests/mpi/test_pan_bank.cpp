@@ -239,12 +239,7 @@ TEST(PanDirections, RefinementHoldsTheFarFieldBetweenItsDirectionsAtTheDemoResol
     const auto refined = jobs::refine_directions(spec, 0, surface, 0.02, 3, 5000);
     directions = refined.mesh.size();
     const kernels::pan::DirectionMesh uniform(spec.divisions, 0);
-    double strongest = 0;
-    for (std::size_t v = 0; v < uniform.size(); ++v) {
-      double e = 0;
-      for (double x : jobs::aligned_far_field(spec, 0, surface, uniform.direction(v))) e += x * x;
-      strongest = std::max(strongest, std::sqrt(e));
-    }
+    const double floor = jobs::far_field_floor(spec, 0, surface);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (int i = 0; i < 48; ++i) {
@@ -253,13 +248,11 @@ TEST(PanDirections, RefinementHoldsTheFarFieldBetweenItsDirectionsAtTheDemoResol
       for (double& x : d) x /= n;
       const auto truth = jobs::aligned_far_field(spec, 0, surface, d);
       for (const auto* mesh : {&refined.mesh, &uniform}) {
-        const auto w = mesh->locate(d);
-        std::vector<double> sum(truth.size(), 0.0);
-        for (int k = 0; k < w.count; ++k) {
-          const auto f = jobs::aligned_far_field(spec, 0, surface, mesh->direction(static_cast<std::size_t>(w.vertex[static_cast<std::size_t>(k)])));
-          for (std::size_t t = 0; t < sum.size(); ++t) sum[t] += w.weight[static_cast<std::size_t>(k)] * f[t];
-        }
-        (mesh == &uniform ? paper : adaptive).push_back(jobs::far_field_miss(sum, truth, 0.1 * strongest));
+        std::vector<double> sum(truth.size()), vertex;
+        kernels::pan::blend(mesh->locate(d), [&](std::size_t v) -> const std::vector<double>& {
+          return vertex = jobs::aligned_far_field(spec, 0, surface, mesh->direction(v));
+        }, sum);
+        (mesh == &uniform ? paper : adaptive).push_back(jobs::far_field_miss(sum, truth, floor));
       }
     }
   };
