@@ -96,7 +96,7 @@ int study(mpi::Session& session, int argc, char** argv) {
       std::fflush(stdout);
     };
     for (int d : {spec.divisions, 2 * spec.divisions, 4 * spec.divisions}) report("uniform-" + std::to_string(d), pan::DirectionMesh(d, 0), 0, 0);
-    report("adaptive", refined.mesh, refined.splits, refined.far_fields);
+    report("adaptive", refined.mesh, refined.splits, refined.far_fields.size());
   };
   jobs::run_solve(session.world(), s, 0, hook);
   return 0;

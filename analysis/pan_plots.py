@@ -58,8 +58,14 @@ def probe(args, bank, b, c, field, x):
 def bank_info(bank):
     with h5py.File(bank) as f:
         g = f["bank"].attrs
+        # Per (proxy, field) direction sets (docs/bank-format.md); each starts with the layout's
+        # vertices, in the same order for every set: the first solved set's are the layout's.
+        offsets = f["directions/vertex_offsets"][...]
+        first = next(s for s in range(len(offsets) - 1) if offsets[s + 1] > offsets[s])
+        d = int(g["divisions"])
         return dict(dt=float(g["dt_s"]), c=float(g["c_m_s"]), radii=f["bank/radii_m"][...],
-                    directions=f["bank/directions"][...], b=f["proxies/b_m"][...], c_m=f["proxies/c_m"][...])
+                    directions=f["directions/unit"][offsets[first]:offsets[first] + (d + 1) * (d + 2) // 2],
+                    b=f["proxies/b_m"][...], c_m=f["proxies/c_m"][...])
 
 
 def raw_solve(args, config, tmp, b, c, points, fields="[1, 2, 3, 4, 5, 6]"):

@@ -1,7 +1,12 @@
 #include "io/pan_bank.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "io/h5.hpp"
@@ -18,9 +23,91 @@ using model::SparseTerms;
 
 namespace {
 
-// The bank's coefficients as stored: solved flags and the CSR of quantized values.
+// ---- The hierarchical coding of a direction set's vertices (docs/bank-format.md) ----
+// A vertex a split made is stored as its values minus the quadratic interpolation of its parent
+// element's six nodes at its position (decoded values, so writer and reader predict alike), with
+// the coefficients whose difference is small dropped: where the parent already interpolates the
+// field well, a refined direction costs little.
+
+// The thresholds of the coding, as fractions of the bank's epsilon: a made vertex's differences,
+// and its decoded coefficients, below kCodedEpsilon epsilon of its peak are dropped. Measured on
+// the demo bank (docs/pan.md, "Adaptive directions"): at 1 the held-out errors grew by up to
+// 1.5 points (the elongated proxy's field 4: 1.3 -> 2.5 %); at 1/4 they are within 0.3 points of
+// the uncoded bank's, for a bank 25 % larger than at 1 and half the uncoded one.
+constexpr double kCodedEpsilon = 0.25;
+
+// Quadratic weights of a parent's six nodes at child c's node k (model::kChildCorners).
+std::array<double, 6> split_weights(std::size_t c, std::size_t k) {
+  static constexpr std::array<std::array<double, 3>, 6> kParent{
+      {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}}};
+  auto corner = [&](std::size_t i) { return kParent[static_cast<std::size_t>(model::kChildCorners[c][i])]; };
+  std::array<double, 3> l = corner(k % 3);
+  if (k >= 3)
+    for (std::size_t i = 0; i < 3; ++i) l[i] = 0.5 * (corner(k - 3)[i] + corner((k - 2) % 3)[i]);
+  return {l[0] * (2 * l[0] - 1), l[1] * (2 * l[1] - 1), l[2] * (2 * l[2] - 1), 4 * l[0] * l[1], 4 * l[1] * l[2],
+          4 * l[2] * l[0]};
+}
+
+// How vertex v is predicted: from element `parent`'s nodes with `weight`, or not (parent -1: a
+// vertex of the layout).
+struct Prediction {
+  std::int32_t parent = -1;
+  std::array<double, 6> weight{};
+};
+
+// Per vertex; throws std::invalid_argument unless the vertices are numbered as they were made (the
+// layout's first, then each split's new nodes in order), every parent node made before its child.
+std::vector<Prediction> predictions(const model::PanDirections& set, std::size_t roots) {
+  const auto& el = set.elements;
+  std::size_t made = 0;  // vertices 0 .. made - 1 are known
+  for (std::size_t e = 0; e < roots; ++e)
+    for (std::int32_t n : el.at(e)) made = std::max(made, static_cast<std::size_t>(n) + 1);
+  std::vector<Prediction> out(set.vertices.size());
+  std::vector<std::pair<std::int32_t, std::size_t>> splits;  // (first child, parent) in the order made
+  for (std::size_t e = 0; e < set.first_child.size(); ++e)
+    if (set.first_child[e] >= 0) splits.push_back({set.first_child[e], e});
+  std::sort(splits.begin(), splits.end());
+  for (const auto& [first, e] : splits)
+    for (std::size_t c = 0; c < 4; ++c)
+      for (std::size_t k = 0; k < 6; ++k) {
+        const auto v = static_cast<std::size_t>(el.at(static_cast<std::size_t>(first) + c)[k]);
+        if (v < made) continue;
+        if (v != made) throw std::invalid_argument("vertices are not numbered in the order the splits made them");
+        for (std::int32_t n : el[e])
+          if (static_cast<std::size_t>(n) >= v) throw std::invalid_argument("a parent node made after its child");
+        out[v] = {static_cast<std::int32_t>(e), split_weights(c, k)};
+        ++made;
+      }
+  if (made != set.vertices.size()) throw std::invalid_argument("vertices that no split made");
+  return out;
+}
+
+// values[v] = prediction from the decoded values of its parent's nodes (dense, T x values), or 0.
+void predict(const model::PanDirections& set, const Prediction& p, const std::vector<std::vector<double>>& decoded,
+             std::vector<double>& values) {
+  std::fill(values.begin(), values.end(), 0.0);
+  if (p.parent < 0) return;
+  const auto& nodes = set.elements[static_cast<std::size_t>(p.parent)];
+  for (std::size_t i = 0; i < 6; ++i) {
+    const auto& parent = decoded[static_cast<std::size_t>(nodes[i])];
+    for (std::size_t n = 0; n < values.size(); ++n) values[n] += p.weight[i] * parent[n];
+  }
+}
+
+// The largest |R p| one coefficient's values give: the far field F (x[0]) or F + D_k at radius k.
+double rp_peak(const double* x, std::size_t n_values) {
+  double m = std::abs(x[0]);
+  for (std::size_t k = 1; k < n_values; ++k) m = std::max(m, std::abs(x[0] + x[k]));
+  return m;
+}
+
+std::size_t layout_roots(std::int32_t divisions) {
+  return static_cast<std::size_t>(divisions / 2) * static_cast<std::size_t>(divisions / 2);
+}
+
+// The bank's coefficients as stored: the CSR of quantized values, a row per vertex of every field's
+// direction set in (proxy, field, vertex) order.
 struct PackedCoefficients {
-  std::vector<std::uint8_t> solved;
   std::vector<std::uint32_t> offsets{0};
   std::vector<std::uint16_t> delta;
   std::vector<std::int16_t> quantized;
@@ -29,39 +116,169 @@ struct PackedCoefficients {
 
 PackedCoefficients pack_coefficients(const PanBank& bank) {
   const PanBankHeader& h = bank.header;
-  const std::size_t n_dirs = h.directions.size(), n_values = h.values();
+  const std::size_t n_values = h.values(), dense_size = h.length * n_values;
   PackedCoefficients out;
-  auto& [solved, offsets, delta, quantized, scale] = out;
+  auto& [offsets, delta, quantized, scale] = out;
   for (const auto& proxy : bank.proxies) {
-    for (const auto& dirs_terms : proxy.fields) {
-      solved.push_back(dirs_terms.empty() ? 0 : 1);  // a field not in solve.fields
-      for (std::size_t d = 0; d < n_dirs; ++d) {
-        static const SparseTerms none;
-        const SparseTerms& t = dirs_terms.empty() ? none : dirs_terms.at(d);
+    for (const auto& field : proxy.fields) {
+      const auto& set = field.directions;
+      if (field.terms.size() != set.vertices.size())
+        throw std::invalid_argument("PAN bank: a field's terms are not one per vertex of its direction set");
+      if (!field.solved()) continue;
+      const auto pred = predictions(set, layout_roots(h.divisions));
+      std::vector<double> peak(field.terms.size(), 0.0), x(n_values);  // per vertex, rp_peak's largest
+      for (std::size_t v = 0; v < field.terms.size(); ++v)
+        for (std::size_t e = 0; e < field.terms[v].index.size(); ++e) {
+          for (std::size_t k = 0; k < n_values; ++k) x[k] = field.terms[v].value[e * n_values + k];
+          peak[v] = std::max(peak[v], rp_peak(x.data(), n_values));
+        }
+      const double field_peak = *std::max_element(peak.begin(), peak.end());
+      std::vector<std::vector<double>> decoded(field.terms.size());
+      std::vector<double> coded(dense_size);
+      for (std::size_t v = 0; v < field.terms.size(); ++v) {
+        const SparseTerms& t = field.terms[v];
+        predict(set, pred[v], decoded, coded);
+        decoded[v] = coded;  // the prediction; the stored differences are added below
+        for (double& c : coded) c = -c;
         for (std::size_t e = 0; e < t.index.size(); ++e)
-          delta.push_back(static_cast<std::uint16_t>(e == 0 ? t.index[e] : t.index[e] - t.index[e - 1]));
-        offsets.push_back(static_cast<std::uint32_t>(delta.size()));
+          for (std::size_t k = 0; k < n_values; ++k) coded[t.index[e] * n_values + k] += t.value[e * n_values + k];
+        // Kept: a root vertex's fitted coefficients; a made vertex's where a difference reaches
+        // kCodedEpsilon times epsilon times its own peak |R p|, or a tenth of the field's (the
+        // refinement's floor).
+        std::vector<std::uint32_t> kept;
+        if (pred[v].parent < 0) {
+          kept = t.index;
+        } else {
+          const double small = kCodedEpsilon * h.epsilon * std::max(peak[v], 0.1 * field_peak);
+          for (std::uint32_t j = 0; j < h.length; ++j)
+            for (std::size_t k = 0; k < n_values; ++k)
+              if (std::abs(coded[j * n_values + k]) >= small && std::abs(coded[j * n_values + k]) > 0) {
+                kept.push_back(j);
+                break;
+              }
+        }
         // Quantization step matched to the fit: coefficients under epsilon * max were dropped, so
         // a step of epsilon * max / 16 (error <= epsilon * max / 32) adds little to the far field,
         // and small integers deflate well. A residual's step is epsilon * max / 4 of the larger of
         // its own and the far field's peak: it is an error in R p = F + D, which the cubic in 1/R
         // spreads over at most four residuals; measured on the demo bank, /4 instead of /16 moved
-        // the held-out errors by under 0.1 % and saved 17 % (docs/pan.md). The 16-bit range
-        // bounds the step from below.
-        std::vector<float> peak(n_values, 0.0f);
+        // the held-out errors by under 0.1 % and saved 17 % (docs/pan.md). The peaks are the
+        // vertex's values'; the 16-bit range bounds the step from below (for a made vertex, by its
+        // differences).
+        std::vector<float> value_peak(n_values, 0.0f), coded_peak(n_values, 0.0f);
+        for (std::size_t k = 0; k < n_values; ++k) {
+          for (std::size_t e = 0; e < t.index.size(); ++e)
+            value_peak[k] = std::max(value_peak[k], std::abs(t.value[e * n_values + k]));
+          for (std::uint32_t j : kept) coded_peak[k] = std::max(coded_peak[k], static_cast<float>(std::abs(coded[j * n_values + k])));
+        }
         for (std::size_t k = 0; k < n_values; ++k)
-          for (std::size_t e = 0; e < t.index.size(); ++e) peak[k] = std::max(peak[k], std::abs(t.value[e * n_values + k]));
-        for (std::size_t k = 0; k < n_values; ++k)
-          scale.push_back(std::max(peak[k] / 32767.0f,
-                                   static_cast<float>(h.epsilon) * std::max(peak[k], peak[0]) / (k == 0 ? 16.0f : 4.0f)));
+          scale.push_back(std::max({value_peak[k] / 32767.0f, coded_peak[k] / 32767.0f,
+                                    static_cast<float>(h.epsilon) * std::max(value_peak[k], value_peak[0]) / (k == 0 ? 16.0f : 4.0f)}));
         const float* sc = &scale[scale.size() - n_values];
-        for (std::size_t e = 0; e < t.index.size(); ++e)
-          for (std::size_t k = 0; k < n_values; ++k)
-            quantized.push_back(static_cast<std::int16_t>(sc[k] > 0 ? std::lround(t.value[e * n_values + k] / sc[k]) : 0));
+        std::uint32_t previous = 0;
+        for (std::size_t e = 0; e < kept.size(); ++e) {
+          const std::uint32_t j = kept[e];
+          delta.push_back(static_cast<std::uint16_t>(e == 0 ? j : j - previous));
+          previous = j;
+          for (std::size_t k = 0; k < n_values; ++k) {
+            const auto q = static_cast<std::int16_t>(sc[k] > 0 ? std::lround(coded[j * n_values + k] / sc[k]) : 0);
+            quantized.push_back(q);
+            decoded[v][j * n_values + k] += static_cast<double>(q) * static_cast<double>(sc[k]);
+          }
+        }
+        offsets.push_back(static_cast<std::uint32_t>(delta.size()));
       }
     }
   }
   return out;
+}
+
+// Direction sets (model::PanDirections) as stored: one CSR of vertices and one of elements over the
+// sets, in (proxy, field) order for a bank; element node and child indices are local to their set.
+void write_direction_sets(File& file, const std::string& group, const std::vector<const model::PanDirections*>& sets,
+                          std::int32_t lattice) {
+  std::vector<std::uint32_t> vertex_offsets{0}, element_offsets{0};
+  std::vector<std::int32_t> points, elements, first_child;
+  std::vector<double> unit;
+  for (const auto* set : sets) {
+    for (const auto& v : set->vertices) {
+      points.insert(points.end(), {v.a, v.b});
+      const double x = v.a, y = v.b, z = lattice - v.a - v.b, n = std::sqrt(x * x + y * y + z * z);
+      unit.insert(unit.end(), {x / n, y / n, z / n});
+    }
+    for (const auto& e : set->elements) elements.insert(elements.end(), e.begin(), e.end());
+    first_child.insert(first_child.end(), set->first_child.begin(), set->first_child.end());
+    vertex_offsets.push_back(static_cast<std::uint32_t>(points.size() / 2));
+    element_offsets.push_back(static_cast<std::uint32_t>(first_child.size()));
+  }
+  const std::size_t nv = points.size() / 2, ne = first_child.size();
+  write_dataset<std::uint32_t>(file, group + "/vertex_offsets", vertex_offsets, {vertex_offsets.size()}, "1", true);
+  write_dataset<std::int32_t>(file, group + "/lattice", points, {nv, 2}, "1", true);
+  write_dataset<double>(file, group + "/unit", unit, {nv, 3}, "1", true);
+  write_dataset<std::uint32_t>(file, group + "/element_offsets", element_offsets, {element_offsets.size()}, "1", true);
+  write_dataset<std::int32_t>(file, group + "/elements", elements, {ne, 6}, "1", true);
+  write_dataset<std::int32_t>(file, group + "/first_child", first_child, {ne}, "1", true);
+}
+
+// Reads n_sets direction sets and checks what locate() relies on (kernels/pan/direction_mesh.hpp):
+// partitions, lattice points in the triangle, node indices in range, children after their parent
+// and inside the set, the layout's roots present. That each set is exactly a refinement of the
+// layout is the kernels' replay (kernels::pan::check_direction_sets), which the tools run on load.
+std::vector<model::PanDirections> read_direction_sets(const File& file, const std::string& group, std::size_t n_sets,
+                                                      std::int32_t divisions, std::int32_t lattice) {
+  const auto ns = static_cast<long long>(n_sets);
+  auto vertex_offsets = read_dataset<std::uint32_t>(file, group + "/vertex_offsets", {ns + 1}, "1");
+  auto element_offsets = read_dataset<std::uint32_t>(file, group + "/element_offsets", {ns + 1}, "1");
+  Dims nv, ne;
+  auto points = read_dataset<std::int32_t>(file, group + "/lattice", {-1, 2}, "1", &nv);
+  auto elements = read_dataset<std::int32_t>(file, group + "/elements", {-1, 6}, "1", &ne);
+  auto first_child = read_dataset<std::int32_t>(file, group + "/first_child", {static_cast<long long>(ne[0])}, "1");
+  auto bad = [&](const std::string& what, std::size_t set) {
+    return InputError(file.path() + ": '" + group + "' direction set " + std::to_string(set) + ": " + what);
+  };
+  const std::size_t roots = static_cast<std::size_t>(divisions / 2) * static_cast<std::size_t>(divisions / 2);
+  std::vector<model::PanDirections> out(n_sets);
+  for (std::size_t s = 0; s < n_sets; ++s) {
+    const std::size_t v0 = vertex_offsets[s], v1 = vertex_offsets[s + 1], e0 = element_offsets[s], e1 = element_offsets[s + 1];
+    if (v0 > v1 || v1 > nv[0] || e0 > e1 || e1 > ne[0] || (s == 0 && (v0 != 0 || e0 != 0)) ||
+        (s + 1 == n_sets && (v1 != nv[0] || e1 != ne[0])))
+      throw bad("'vertex_offsets' or 'element_offsets' is not a partition", s);
+    if (v1 == v0 && e1 == e0) continue;  // not solved
+    if (e1 - e0 < roots) throw bad("fewer elements than the layout's " + std::to_string(roots) + " roots", s);
+    auto& set = out[s];
+    for (std::size_t v = v0; v < v1; ++v) {
+      const std::int32_t a = points[2 * v], b = points[2 * v + 1];
+      if (a < 0 || b < 0 || a > lattice - b)
+        throw bad("lattice point (" + std::to_string(a) + ", " + std::to_string(b) + ") outside the lattice of " +
+                      std::to_string(lattice), s);
+      set.vertices.push_back({a, b});
+    }
+    const std::size_t n_el = e1 - e0, n_vx = v1 - v0;
+    for (std::size_t e = 0; e < n_el; ++e) {
+      std::array<std::int32_t, 6> nodes{};
+      for (std::size_t k = 0; k < 6; ++k) {
+        nodes[k] = elements[(e0 + e) * 6 + k];
+        if (nodes[k] < 0 || static_cast<std::size_t>(nodes[k]) >= n_vx) throw bad("element node index out of range", s);
+      }
+      const std::int32_t c = first_child[e0 + e];
+      if (c != -1 && (c <= static_cast<std::int64_t>(e) || static_cast<std::size_t>(c) + 4 > n_el))
+        throw bad("element " + std::to_string(e) + "'s first child " + std::to_string(c) + " is not after it in the set", s);
+      set.elements.push_back(nodes);
+      set.first_child.push_back(c);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
+void check_lattice(const std::string& path, std::int32_t divisions, std::int32_t max_levels) {
+  // DirectionMesh's limits (kernels/pan/direction_mesh.hpp)
+  if (divisions < 2 || divisions % 2 != 0 || max_levels < 0 || max_levels > 16 || divisions > (1 << 20) >> max_levels)
+    throw InputError(path + ": /bank attributes divisions = " + std::to_string(divisions) + " and max_levels = " +
+                     std::to_string(max_levels) + ": need even divisions >= 2 and 0 to 16 levels on a lattice below 2^20");
 }
 
 }  // namespace
@@ -89,47 +306,53 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
   write_attribute<std::uint32_t>(file, "/bank", "length", h.length);
   write_attribute(file, "/bank", "wavelet", std::string_view("GSL gsl_wavelet_daubechies, member 10 (5 vanishing "
                                                              "moments), periodic, packed ordering"));
+  write_attribute<std::int32_t>(file, "/bank", "divisions", h.divisions);
+  write_attribute<std::int32_t>(file, "/bank", "max_levels", h.max_levels);
+  write_attribute<std::int32_t>(file, "/bank", "lattice", h.lattice());
+  write_attribute(file, "/bank", "directions",
+                  std::string_view("per (proxy, field) a direction set under /directions: lattice point (a, b) is the "
+                                   "direction (a, b, lattice - a - b) / |.| (also in /directions/unit); six-node "
+                                   "quadratic elements, the layout's (divisions / 2)^2 roots first, each split into "
+                                   "four children where refined (docs/bank-format.md)"));
   write_dataset<double>(file, "/bank/radii_m", h.radii_m, {h.radii_m.size()}, "m");
-  std::vector<double> dirs;
-  for (const auto& d : h.directions) dirs.insert(dirs.end(), d.begin(), d.end());
-  write_dataset<double>(file, "/bank/directions", dirs, {h.directions.size(), 3}, "1");
-  std::vector<std::int32_t> tris;
-  for (const auto& t : h.triangles) tris.insert(tris.end(), t.begin(), t.end());
-  write_dataset<std::int32_t>(file, "/bank/triangles", tris, {h.triangles.size(), 3}, "1");
   std::vector<double> b, c;
+  std::vector<const model::PanDirections*> sets;
   for (const auto& p : bank.proxies) {
     b.push_back(p.b_m);
     c.push_back(p.c_m);
+    for (const auto& f : p.fields) sets.push_back(&f.directions);
   }
   write_dataset<double>(file, "/proxies/b_m", b, {b.size()}, "m");
   write_dataset<double>(file, "/proxies/c_m", c, {c.size()}, "m");
+  write_direction_sets(file, "/directions", sets, h.lattice());
 
-  // All coefficients in one compressed CSR: rows are (proxy, field, direction) in that order, so
-  // a bank is a handful of datasets however many proxies it holds (HDF5 objects cost ~1-2 KB each).
-  const std::size_t n_dirs = h.directions.size(), n_values = h.values();
-  const std::size_t n_proxies = bank.proxies.size();
+  // All coefficients in one compressed CSR, a row per vertex of every set in (proxy, field,
+  // vertex) order: a bank is a handful of datasets however many proxies it holds (HDF5 objects
+  // cost ~1-2 KB each).
+  const std::size_t n_values = h.values();
   const PackedCoefficients packed = pack_coefficients(bank);
-  const auto& [solved, offsets, delta, quantized, scale] = packed;
-  write_dataset<std::uint8_t>(file, "/coefficients/solved", solved, {n_proxies, 6}, "1", true);
+  const auto& [offsets, delta, quantized, scale] = packed;
   write_dataset<std::uint32_t>(file, "/coefficients/offsets", offsets, {offsets.size()}, "1", true);
   write_dataset<std::uint16_t>(file, "/coefficients/index_delta", delta, {delta.size()}, "1", true);
   write_dataset<std::int16_t>(file, "/coefficients/values", quantized, {delta.size(), n_values}, "1", true);
-  write_dataset<float>(file, "/coefficients/scale", scale, {n_proxies, 6, n_dirs, n_values}, "Pa m per unit acceleration",
+  write_dataset<float>(file, "/coefficients/scale", scale, {offsets.size() - 1, n_values}, "Pa m per unit acceleration",
                        true);
   write_sweep_status(file, bank.sweep);
   write_provenance(file, command, config_toml, n_ranks);
   file.commit();
 }
 
-void write_pan_task(File& file, const std::string& group, const PanTaskResult& task, std::size_t n_values) {
+void write_pan_task(File& file, const std::string& group, const PanTaskResult& task, std::int32_t lattice,
+                    std::size_t n_values) {
   create_group(file, group);
   write_attribute<std::uint32_t>(file, group, "proxy", task.proxy);
   write_attribute<double>(file, group, "b_m", task.b_m);
   write_attribute<double>(file, group, "c_m", task.c_m);
   write_attribute<std::int32_t>(file, group, "field", task.field);
+  write_direction_sets(file, group + "/directions", {&task.fit.directions}, lattice);
   std::vector<std::uint32_t> offsets{0}, index;
   std::vector<float> values;
-  for (const auto& d : task.directions) {
+  for (const auto& d : task.fit.terms) {
     index.insert(index.end(), d.index.begin(), d.index.end());
     values.insert(values.end(), d.value.begin(), d.value.end());
     offsets.push_back(static_cast<std::uint32_t>(index.size()));
@@ -139,13 +362,15 @@ void write_pan_task(File& file, const std::string& group, const PanTaskResult& t
   write_dataset<float>(file, group + "/values", values, {index.size(), n_values}, "Pa m per unit acceleration", true);
 }
 
-PanTaskResult read_pan_task(const File& file, const std::string& group, std::size_t n_values,
-                            std::size_t n_directions, std::uint32_t length) {
+PanTaskResult read_pan_task(const File& file, const std::string& group, const PanBankHeader& header) {
   PanTaskResult t;
   t.proxy = read_attribute<std::uint32_t>(file, group, "proxy");
   t.b_m = read_attribute<double>(file, group, "b_m");
   t.c_m = read_attribute<double>(file, group, "c_m");
   t.field = read_attribute<std::int32_t>(file, group, "field");
+  t.fit.directions = read_direction_sets(file, group + "/directions", 1, header.divisions, header.lattice()).at(0);
+  const std::size_t n_directions = t.fit.directions.vertices.size(), n_values = header.values();
+  if (n_directions == 0) throw InputError(file.path() + ": '" + group + "/directions' holds no direction");
   auto offsets = read_dataset<std::uint32_t>(file, group + "/offsets", {static_cast<long long>(n_directions) + 1}, "1");
   Dims n;
   auto index = read_dataset<std::uint32_t>(file, group + "/index", {-1}, "1", &n);
@@ -156,12 +381,12 @@ PanTaskResult read_pan_task(const File& file, const std::string& group, std::siz
       throw InputError(file.path() + ": '" + group + "/offsets' is not a partition of the coefficients");
     SparseTerms terms_d;
     for (std::uint32_t e = offsets[d]; e < offsets[d + 1]; ++e) {
-      if (index[e] >= length || (e > offsets[d] && index[e] <= index[e - 1]))
+      if (index[e] >= header.length || (e > offsets[d] && index[e] <= index[e - 1]))
         throw InputError(file.path() + ": '" + group + "/index' is out of range or not ascending");
       terms_d.index.push_back(index[e]);
       for (std::size_t k = 0; k < n_values; ++k) terms_d.value.push_back(values[e * n_values + k]);
     }
-    t.directions.push_back(std::move(terms_d));
+    t.fit.terms.push_back(std::move(terms_d));
   }
   return t;
 }
@@ -181,49 +406,85 @@ PanBank read_pan_bank(const std::string& path) {
   h.length = read_attribute<std::uint32_t>(file, "/bank", "length");
   if (h.length < 2 || (h.length & (h.length - 1)) != 0 || !(h.dt_s > 0))
     throw InputError(path + ": /bank attributes length or dt_s out of range");
+  h.divisions = read_attribute<std::int32_t>(file, "/bank", "divisions");
+  h.max_levels = read_attribute<std::int32_t>(file, "/bank", "max_levels");
+  check_lattice(path, h.divisions, h.max_levels);
   h.radii_m = read_dataset<double>(file, "/bank/radii_m", {-1}, "m");
   for (std::size_t i = 0; i < h.radii_m.size(); ++i)  // the radial model's nodes (kernels/pan/radial.hpp)
     if (!(h.radii_m[i] > 0 && std::isfinite(h.radii_m[i])) || (i > 0 && !(h.radii_m[i] > h.radii_m[i - 1])))
       throw InputError(path + ": '/bank/radii_m' must be positive, finite and ascending (entry " + std::to_string(i) +
                        " is " + std::to_string(h.radii_m[i]) + ")");
-  auto dirs = read_dataset<double>(file, "/bank/directions", {-1, 3}, "1");
-  for (std::size_t i = 0; i + 2 < dirs.size(); i += 3) h.directions.push_back({dirs[i], dirs[i + 1], dirs[i + 2]});
-  auto tris = read_dataset<std::int32_t>(file, "/bank/triangles", {-1, 3}, "1");
-  for (std::size_t i = 0; i + 2 < tris.size(); i += 3) h.triangles.push_back({tris[i], tris[i + 1], tris[i + 2]});
   Dims nb;
   auto b = read_dataset<double>(file, "/proxies/b_m", {-1}, "m", &nb);
   auto c = read_dataset<double>(file, "/proxies/c_m", {static_cast<long long>(nb[0])}, "m");
-  const std::size_t n_dirs = h.directions.size(), n_values = h.values(), np = b.size();
-  const auto nd = static_cast<long long>(n_dirs), nv = static_cast<long long>(n_values), npl = static_cast<long long>(np);
-  auto solved = read_dataset<std::uint8_t>(file, "/coefficients/solved", {npl, 6}, "1");
-  auto offsets = read_dataset<std::uint32_t>(file, "/coefficients/offsets", {npl * 6 * nd + 1}, "1");
+  const std::size_t n_values = h.values(), np = b.size();
+  auto sets = read_direction_sets(file, "/directions", np * 6, h.divisions, h.lattice());
+  std::size_t rows = 0;
+  for (const auto& s : sets) rows += s.vertices.size();
+  const auto nv = static_cast<long long>(n_values), nr = static_cast<long long>(rows);
+  auto offsets = read_dataset<std::uint32_t>(file, "/coefficients/offsets", {nr + 1}, "1");
   Dims nnz;
   auto delta = read_dataset<std::uint16_t>(file, "/coefficients/index_delta", {-1}, "1", &nnz);
   auto values = read_dataset<std::int16_t>(file, "/coefficients/values", {static_cast<long long>(nnz[0]), nv}, "1");
-  auto scale = read_dataset<float>(file, "/coefficients/scale", {npl, 6, nd, nv}, "Pa m per unit acceleration");
+  auto scale = read_dataset<float>(file, "/coefficients/scale", {nr, nv}, "Pa m per unit acceleration");
+  std::size_t row = 0;
+  const std::size_t dense_size = h.length * n_values;
   for (std::size_t p = 0; p < np; ++p) {
     PanProxy proxy;
     proxy.b_m = b[p];
     proxy.c_m = c[p];
-    for (int field = 1; field <= 6; ++field) {
-      const std::size_t pf = p * 6 + static_cast<std::size_t>(field - 1);
-      if (solved[pf] == 0) continue;
-      auto& out = proxy.fields[static_cast<std::size_t>(field - 1)];
-      out.resize(n_dirs);
-      for (std::size_t d = 0; d < n_dirs; ++d) {
-        const std::size_t row = pf * n_dirs + d;
+    for (std::size_t f = 0; f < 6; ++f) {
+      model::PanField& out = proxy.fields[f];
+      out.directions = std::move(sets[p * 6 + f]);
+      if (out.directions.vertices.empty()) continue;
+      std::vector<Prediction> pred;
+      try {
+        pred = predictions(out.directions, layout_roots(h.divisions));
+      } catch (const std::invalid_argument& e) {
+        throw InputError(path + ": '/directions' set " + std::to_string(p * 6 + f) + " (proxy " + std::to_string(p) +
+                         ", field " + std::to_string(f + 1) + "): " + e.what());
+      }
+      std::vector<std::vector<double>> decoded(out.directions.vertices.size(), std::vector<double>());
+      out.terms.resize(out.directions.vertices.size());
+      for (std::size_t v = 0; v < out.terms.size(); ++v, ++row) {
         if (offsets[row] > offsets[row + 1] || offsets[row + 1] > delta.size())
           throw InputError(path + ": '/coefficients/offsets' is not a valid partition of " + std::to_string(delta.size()) +
                            " coefficients (row " + std::to_string(row) + ")");
+        auto& terms = out.terms[v];
+        std::vector<double>& dense = decoded[v];
+        dense.resize(dense_size);
+        predict(out.directions, pred[v], decoded, dense);
         std::uint32_t j = 0;
         for (std::uint32_t e = offsets[row]; e < offsets[row + 1]; ++e) {
           j = e == offsets[row] ? delta[e] : j + delta[e];
           if (j >= h.length || (e > offsets[row] && delta[e] == 0))
             throw InputError(path + ": '/coefficients/index_delta' gives coefficient index " + std::to_string(j) +
                              " outside [0, " + std::to_string(h.length) + ") or repeated");
-          out[d].index.push_back(j);
-          for (std::size_t k = 0; k < n_values; ++k)
-            out[d].value.push_back(static_cast<float>(values[e * n_values + k]) * scale[row * n_values + k]);
+          if (pred[v].parent < 0) terms.index.push_back(j);  // a layout vertex: its stored coefficients as they are
+          for (std::size_t k = 0; k < n_values; ++k) {
+            const float x = static_cast<float>(values[e * n_values + k]) * scale[row * n_values + k];
+            dense[j * n_values + k] += static_cast<double>(values[e * n_values + k]) * static_cast<double>(scale[row * n_values + k]);
+            if (pred[v].parent < 0) terms.value.push_back(x);
+          }
+        }
+      }
+      // A made vertex holds every coefficient its parents' interpolation reaches; the evaluator
+      // gets those the fit's rule keeps (kernels/pan/fit.hpp) at kCodedEpsilon times epsilon: R p at
+      // some radius or at infinity (F + D_k, or F) reaching that fraction of its peak, or of a
+      // tenth of the field's.
+      std::vector<double> peak(out.terms.size(), 0.0);
+      for (std::size_t v = 0; v < out.terms.size(); ++v)
+        for (std::uint32_t n = 0; n < h.length; ++n) peak[v] = std::max(peak[v], rp_peak(&decoded[v][n * n_values], n_values));
+      const double field_peak = *std::max_element(peak.begin(), peak.end());
+      for (std::size_t v = 0; v < out.terms.size(); ++v) {
+        if (pred[v].parent < 0) continue;
+        const double small = kCodedEpsilon * h.epsilon * std::max(peak[v], 0.1 * field_peak);
+        auto& terms = out.terms[v];
+        for (std::uint32_t n = 0; n < h.length; ++n) {
+          const double* x = &decoded[v][n * n_values];
+          if (rp_peak(x, n_values) < small || rp_peak(x, n_values) == 0) continue;
+          terms.index.push_back(n);
+          for (std::size_t k = 0; k < n_values; ++k) terms.value.push_back(static_cast<float>(x[k]));
         }
       }
     }
@@ -231,17 +492,6 @@ PanBank read_pan_bank(const std::string& path) {
   }
   bank.sweep = read_sweep_status(file);
   return bank;
-}
-
-std::size_t pan_coefficient_bytes(const PanBank& bank) {
-  std::size_t bytes = 0;
-  const std::size_t n_values = bank.header.values();
-  for (const auto& p : bank.proxies)
-    for (const auto& f : p.fields) {
-      bytes += (f.size() + 1) * 4 + f.size() * n_values * 4;  // offsets, scales
-      for (const auto& d : f) bytes += d.index.size() * (2 + 2 * n_values);
-    }
-  return bytes;
 }
 
 }  // namespace clatter::io

@@ -1,8 +1,9 @@
 #pragma once
 // The PAN soundbank file (format "clatter-pan-bank", docs/bank-format.md): per proxy ellipsoid
-// (A, B, C) and rigid-body field, the sparse wavelet coefficients of the radial model (the far
-// field and the residual at each stored radius, kernels/pan/radial.hpp) in each octant direction. The data is model::PanBank (model/pan_bank.hpp); the numerics live in
-// kernels/pan.
+// (A, B, C) and rigid-body field, its direction set (kernels/pan/direction_mesh.hpp) and, per
+// direction, the sparse wavelet coefficients of the radial model (the far field and the residual at
+// each stored radius, kernels/pan/radial.hpp). The data is model::PanBank (model/pan_bank.hpp); the
+// numerics live in kernels/pan.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -13,10 +14,12 @@
 namespace clatter::io {
 
 inline constexpr const char* kPanBankFormat = "clatter-pan-bank";
-inline constexpr int kPanBankFormatVersion = 3;  // 3: the radial model replaced the series (8)
+// 3: the radial model replaced the series (8); 4: a direction set per (proxy, field), adaptive
+inline constexpr int kPanBankFormatVersion = 4;
 
 // Writes atomically (temporary + rename); coefficients quantized to 16 bits per (direction, value)
-// scale, indices delta-coded, every dataset shuffled, deflated and Fletcher-32 checksummed.
+// scale, a refined direction coded as its difference from its parent's interpolation, indices
+// delta-coded, every dataset shuffled, deflated and Fletcher-32 checksummed.
 void write_pan_bank(const std::string& path, const model::PanBank& bank, const std::string& command,
                     const std::string& config_toml, int n_ranks);
 
@@ -26,13 +29,9 @@ void write_pan_bank(const std::string& path, const model::PanBank& bank, const s
 model::PanBank read_pan_bank(const std::string& path);
 
 // The payload of a task file under group `group` (the sweep engine owns the file). read_pan_task
-// checks every shape against the header.
-// `values` per kept coefficient: PanBankHeader::values().
-void write_pan_task(File& file, const std::string& group, const model::PanTaskResult& task, std::size_t values);
-model::PanTaskResult read_pan_task(const File& file, const std::string& group, std::size_t values,
-                                   std::size_t n_directions, std::uint32_t length);
-
-// Bytes of coefficient data (indices, values, scales) as stored before compression.
-std::size_t pan_coefficient_bytes(const model::PanBank& bank);
+// checks every shape against the header (values per kept coefficient, length, the lattice).
+void write_pan_task(File& file, const std::string& group, const model::PanTaskResult& task, std::int32_t lattice,
+                    std::size_t values);
+model::PanTaskResult read_pan_task(const File& file, const std::string& group, const model::PanBankHeader& header);
 
 }  // namespace clatter::io

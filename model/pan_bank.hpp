@@ -27,23 +27,54 @@ struct PanBankHeader {
   double epsilon = 0;        // compression threshold of the fit
   double a_m = 0.5;          // semi-axis A shared by every proxy
   std::uint32_t length = 0;  // T, wavelet length (a power of two)
-  std::vector<double> radii_m;                         // the M stored radii, ascending
-  std::vector<std::array<double, 3>> directions;       // octant direction vertices (45)
-  std::vector<std::array<std::int32_t, 3>> triangles;  // their triangles (64)
+  std::vector<double> radii_m;  // the M stored radii, ascending
+  // Every field's direction set refines the same layout (PanDirections) on the same lattice.
+  std::int32_t divisions = 8;   // the layout: octant edges cut in 8 -> 45 directions (the paper's)
+  std::int32_t max_levels = 0;  // splits below a root the lattice has room for
+  std::int32_t lattice() const { return divisions << max_levels; }
 
   // Values per kept coefficient: the far field and one residual per radius.
   std::size_t values() const { return radii_m.size() + 1; }
 };
 
-// One proxy ellipsoid (A, B, C): per field 1..6, one SparseTerms per direction, or none when the
-// field was not solved. Each direction's series are aligned by the support distance
-// (kernels/pan/fit.hpp support_delay_samples), which follows from A, B, C: nothing stored.
+// A point (a, b) of the direction lattice: the direction (a, b, L - a - b) / |.|, L = lattice().
+struct LatticePoint {
+  std::int32_t a = 0, b = 0;
+  bool operator==(const LatticePoint&) const = default;
+};
+
+// The direction set of one field of one proxy (kernels/pan/direction_mesh.hpp): the layout's
+// six-node quadratic elements as roots, each split in four where interpolation missed the field.
+// Unrefined, it is the paper's uniform layout. Vertices are numbered as they were made: the
+// layout's first, then each split's new ones in the order of its children's nodes.
+struct PanDirections {
+  std::vector<LatticePoint> vertices;
+  std::vector<std::array<std::int32_t, 6>> elements;  // corners 0-2, then midpoints of edges 01, 12, 20
+  std::vector<std::int32_t> first_child;              // per element: the first of its four children, or -1
+};
+
+// How an element splits: child c's corners are its parent's nodes kChildCorners[c] (nodes 0-2 the
+// corners, 3-5 the midpoints of edges 01, 12, 20); a child's own nodes are its corners, then the
+// midpoints of its edges 01, 12, 20. The children of (P0, P1, P2; M01, M12, M20) are (P0, M01,
+// M20), (M01, P1, M12), (M20, M12, P2) and the centre (M12, M20, M01).
+inline constexpr std::array<std::array<int, 3>, 4> kChildCorners{{{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {4, 5, 3}}};
+
+// One field of one proxy: its direction set and one SparseTerms per vertex of it; empty when the
+// field was not solved.
+struct PanField {
+  PanDirections directions;
+  std::vector<SparseTerms> terms;  // terms[v]: vertex v of `directions`
+  bool solved() const { return !terms.empty(); }
+};
+
+// One proxy ellipsoid (A, B, C) and its fields 1..6. Each direction's series are aligned by the
+// support distance (kernels/pan/fit.hpp support_delay_samples), which follows from A, B, C.
 struct PanProxy {
   double b_m = 0, c_m = 0;
-  std::array<std::vector<SparseTerms>, 6> fields;  // fields[field - 1]
+  std::array<PanField, 6> fields;  // fields[field - 1]
 
-  const std::vector<SparseTerms>& field(int f) const { return fields.at(static_cast<std::size_t>(f - 1)); }
-  bool solved(int f) const { return !field(f).empty(); }
+  const PanField& field(int f) const { return fields.at(static_cast<std::size_t>(f - 1)); }
+  bool solved(int f) const { return field(f).solved(); }
 };
 
 struct PanBank {
@@ -57,7 +88,7 @@ struct PanTaskResult {
   std::uint32_t proxy = 0;  // index in the config's proxy list
   double b_m = 0, c_m = 0;
   int field = 0;
-  std::vector<SparseTerms> directions;
+  PanField fit;
 };
 
 }  // namespace clatter::model

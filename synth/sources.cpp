@@ -7,12 +7,18 @@
 
 #include "core/errors.hpp"
 #include "io/pan_bank.hpp"
+#include "kernels/pan/field.hpp"
 #include "kernels/pan/render.hpp"
 
 namespace clatter::synth {
 
 PanSource::PanSource(const std::string& bank_path) : bank_(io::read_pan_bank(bank_path)) {
   if (bank_.proxies.empty()) throw InputError(bank_path + ": the bank holds no proxies");
+  try {
+    kernels::pan::check_direction_sets(bank_);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(bank_path + ": " + e.what());
+  }
 }
 
 // Shapes compare at the bank's A: (B, C) = A (b, c) / a.

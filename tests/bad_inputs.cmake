@@ -29,7 +29,8 @@ clatter_error_test(bad_solve_no_fields 0 "'solve.fields' is empty" solve "--set=
 clatter_error_test(bad_solve_no_listeners 0 "'listeners.points_m' is empty" solve "--set=listeners.points_m=[]" -o out.h5)
 clatter_error_test(bad_pan_proxy_order 0 "'proxies.list_m' proxy 1 = [0.2, 0.3];C <= B <= A = 0.5"
                    pan "--set=proxies.list_m=[[0.2, 0.3]]" -o out.h5)
-clatter_error_test(bad_pan_odd_divisions 0 "'fit.divisions' has 7;must be even" pan --set fit.divisions=7 -o out.h5)
+clatter_error_test(bad_pan_divisions 0 "'fit.divisions' has 12;must be 2, 4, 8, 16, 32 or 64" pan --set fit.divisions=12 -o out.h5)
+clatter_error_test(bad_pan_max_directions 0 "'fit.max_directions' has 20;fewer than the layout's 45 directions" pan --set fit.max_directions=20 -o out.h5)
 clatter_error_test(bad_pan_radius_inside 0 "'fit.radii_m' has 0.51: 0.5112 m from the centre, not beyond the Kirchhoff surface (radius 0.5195 m + 2 cells = 0.5325 m)"
                    pan "--set=fit.radii_m=[0.51, 1.0]" -o out.h5)
 clatter_error_test(bad_pan_radii_order 0 "'fit.radii_m' has 0.8 after 1.001: the radii must ascend" pan "--set=fit.radii_m=[1.0, 0.8]" -o out.h5)
@@ -167,7 +168,7 @@ foreach(case
     "truncated|truncated.h5: not a readable HDF5 file"
     "no_format|no_format.h5: not a Clatter file (no 'format' attribute)|expected format 'clatter-pan-bank'"
     "wrong_format|wrong_format.h5: format 'clatter-fdtd-raw', expected 'clatter-pan-bank'"
-    "wrong_version|wrong_version.h5: format 'clatter-pan-bank' version 1, this build reads version 3"
+    "wrong_version|wrong_version.h5: format 'clatter-pan-bank' version 1, this build reads version 4"
     "wrong_shape|wrong_shape.h5: dataset '/proxies/c_m': expected float64 [2] in 'm', found float64 [1]"
     "corrupt|corrupt.h5: dataset '/coefficients/values' cannot be read: corrupt or truncated file"
     "index_out_of_range|index_out_of_range.h5: '/coefficients/index_delta' gives coefficient index 512 outside [0, 512)")
@@ -177,7 +178,7 @@ foreach(case
   set_tests_properties(bad_bank_${file} PROPERTIES FIXTURES_REQUIRED "pan_bank;bad_banks")
 endforeach()
 clatter_error_test(bad_bank_info_corrupt 0 "corrupt.h5;cannot be read: corrupt or truncated file" info ${bad_banks}/corrupt.h5)
-clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads version 3" info ${bad_banks}/wrong_version.h5)
+clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads version 4" info ${bad_banks}/wrong_version.h5)
 clatter_error_test(bad_bank_info_wrong_format 0 "wrong_format.h5: format 'clatter-fdtd-raw' is not a bank's;clatter-pan-bank, clatter-modal-bank, clatter-object-bank, clatter-ground-bank"
                    info ${bad_banks}/wrong_format.h5)
 clatter_error_test(bad_bank_info_no_format 0 "no_format.h5: not a Clatter file (no 'format' attribute);expected a bank"

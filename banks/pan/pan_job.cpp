@@ -27,9 +27,9 @@ TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task
   r.b_m = result.proxy.b_m;
   r.c_m = result.proxy.c_m;
   r.field = task.field;
-  r.directions = std::move(result.proxy.fields[static_cast<std::size_t>(task.field - 1)]);
-  return [r = std::move(r), values = spec.radii_m.size() + 1](io::File& file, const std::string& group_name) {
-    io::write_pan_task(file, group_name, r, values);
+  r.fit = std::move(result.proxy.fields[static_cast<std::size_t>(task.field - 1)]);
+  return [r = std::move(r), header = pan_header(spec)](io::File& file, const std::string& group_name) {
+    io::write_pan_task(file, group_name, r, header.lattice(), header.values());
   };
 }
 
@@ -50,11 +50,19 @@ model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results
                                           spec.proxies_bc_m[t.proxy][1], t.field);
     if (!task_done(results_dir, t.name, label, config_toml, bank.sweep)) continue;
     auto file = io::File::open(io::task_path(results_dir, t.name));
-    auto r = io::read_pan_task(file, "/result", bank.header.values(), bank.header.directions.size(), spec.length);
+    auto r = io::read_pan_task(file, "/result", bank.header);
     if (r.proxy != t.proxy || r.field != t.field)
       throw InputError(fmt::format("{}: holds proxy {} field {}, expected {} field {}", file.path(), r.proxy, r.field,
                                    t.proxy, t.field));
-    bank.proxies[t.proxy].fields[static_cast<std::size_t>(t.field - 1)] = std::move(r.directions);
+    try {  // the replay io cannot do (kernels/pan/direction_mesh.hpp)
+      if (pan::DirectionMesh(bank.header.divisions, bank.header.max_levels, r.fit.directions).size() != r.fit.terms.size())
+        throw std::invalid_argument("not one set of terms per direction");
+    } catch (const std::invalid_argument& e) {
+      throw InputError(fmt::format("{}: its direction set is not a refinement of the octant with fit.divisions = {} "
+                                   "and fit.direction_levels = {}: {}", file.path(), spec.divisions, spec.direction_levels,
+                                   e.what()));
+    }
+    bank.proxies[t.proxy].fields[static_cast<std::size_t>(t.field - 1)] = std::move(r.fit);
   }
   return bank;
 }
@@ -88,6 +96,16 @@ Alignment alignment(const PanSpec& spec, std::size_t proxy, const std::array<dou
   return {whole, -(delay - whole) * dt};
 }
 
+double l2(const std::vector<double>& x) {
+  double e = 0;
+  for (double v : x) e += v * v;
+  return std::sqrt(e);
+}
+
+// The miss floor from the strongest far field among the layout's directions: a tenth of its
+// amplitude, 1 % of its energy (refine_directions).
+double floor_from_strongest(double strongest_l2) { return 0.1 * strongest_l2; }
+
 }  // namespace
 
 ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
@@ -104,33 +122,60 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   ProxyResult out;
   out.proxy.b_m = b_m;
   out.proxy.c_m = c_m;
-  const auto directions = pan::direction_vertices(spec.divisions);
   std::vector<int> shifts;
   for (int k : spec.shift_steps) shifts.push_back(k - spec.lead_steps);
   const pan::Fitter fitter(spec.radii_m, shifts, spec.length);
   const std::size_t ns = static_cast<std::size_t>(s.n_samples), m = spec.radii_m.size();
-  // Rank 0, per field, while its surface is alive: every direction heard at its radii and at
-  // infinity, aligned by its support distance (the whole steps in the fit, the fraction here).
+  // The yardstick of a field's refinement floor (refine_directions): field 3, translation along the
+  // smallest semi-axis C, which radiates the most of the translations (the largest projected
+  // area, A B). Solved first, and only heard for its strength when it is not one of the fields.
+  const std::vector<int> wanted = s.fields;
+  const bool yardstick = spec.direction_tolerance > 0;
+  if (yardstick) {
+    s.fields.erase(std::remove(s.fields.begin(), s.fields.end(), 3), s.fields.end());
+    s.fields.insert(s.fields.begin(), 3);
+  }
+  const bool store_3 = std::find(wanted.begin(), wanted.end(), 3) != wanted.end();
+  out.extra_series.resize(wanted.size());
+  double field_3_l2 = 0;
+  // Rank 0, per field, while its surface is alive: the field's direction set (refined where the
+  // far field asks for it), then every direction heard at its radii and at infinity, aligned by its
+  // support distance (the whole steps in the fit, the fraction here).
   auto hear = [&](std::size_t fi, const fdtd::SurfaceField& surface) {
-    auto& dirs = out.proxy.fields[static_cast<std::size_t>(s.fields[fi] - 1)];
+    const int f = s.fields[fi];
+    if (yardstick && f == 3 && !store_3) {
+      field_3_l2 = layout_strength(spec, proxy, surface);
+      return;
+    }
+    auto& field = out.proxy.fields[static_cast<std::size_t>(f - 1)];
+    DirectionRefinement set{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, 0};
+    if (spec.direction_tolerance > 0)  // a rotation field per unit angular acceleration moves the surface by up to A
+      set = refine_directions(spec, proxy, surface, spec.direction_tolerance, spec.direction_levels, spec.max_directions,
+                              f <= 3 ? field_3_l2 : spec.a_m * field_3_l2);
+    if (f == 3) field_3_l2 = set.strongest_l2;
     std::vector<std::vector<float>> near(m, std::vector<float>(ns));
     std::vector<const float*> series;
     for (const auto& v : near) series.push_back(v.data());
-    for (const auto& d : directions) {
+    for (std::size_t v = 0; v < set.mesh.size(); ++v) {
+      const auto d = set.mesh.direction(v);
       const Alignment a = alignment(spec, proxy, d);
       for (std::size_t i = 0; i < m; ++i) {
         const double r = spec.radii_m[i];
         const auto p = fdtd::pressure_at(surface, {r * d[0], r * d[1], r * d[2]}, a.advance_s);
         for (std::size_t k = 0; k < ns; ++k) near[i][k] = static_cast<float>(p.value[k]);
       }
-      dirs.push_back(fitter.fit(series, ns, spec.epsilon, a.whole_steps, aligned_far_field(spec, proxy, surface, d)));
+      const auto heard = set.far_fields.find(pan::lattice_key(set.mesh.vertices()[v]));
+      field.terms.push_back(fitter.fit(series, ns, spec.epsilon, a.whole_steps,
+                                       heard != set.far_fields.end() ? heard->second : aligned_far_field(spec, proxy, surface, d)));
     }
+    field.directions = set.mesh.stored();
     std::vector<float> extra(extra_listeners_m.size() * ns);
     for (std::size_t l = 0; l < extra_listeners_m.size(); ++l) {
       const auto p = fdtd::pressure_at(surface, extra_listeners_m[l]);
       for (std::size_t k = 0; k < ns; ++k) extra[l * ns + k] = static_cast<float>(p.value[k]);
     }
-    out.extra_series.push_back(std::move(extra));
+    const auto slot = std::find(wanted.begin(), wanted.end(), f) - wanted.begin();  // in the caller's order
+    out.extra_series[static_cast<std::size_t>(slot)] = std::move(extra);
   };
   run_solve(comm, s, progress_interval_s, hear);
   if (mpi::rank(comm) != 0) return {};
@@ -143,14 +188,15 @@ std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, co
   return frame_far_field(spec, kernels::fdtd::far_field(surface, d, a.advance_s), a.whole_steps);
 }
 
-double far_field_floor(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface) {
+double layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface) {
   double strongest = 0;
-  for (const auto& d : pan::direction_vertices(spec.divisions)) {
-    double e = 0;
-    for (double x : aligned_far_field(spec, proxy, surface, d)) e += x * x;
-    strongest = std::max(strongest, std::sqrt(e));
-  }
-  return 0.1 * strongest;
+  for (const auto& d : pan::direction_vertices(spec.divisions))
+    strongest = std::max(strongest, l2(aligned_far_field(spec, proxy, surface, d)));
+  return strongest;
+}
+
+double far_field_floor(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface) {
+  return floor_from_strongest(layout_strength(spec, proxy, surface));
 }
 
 double far_field_miss(const std::vector<double>& interpolated, const std::vector<double>& truth, double floor) {
@@ -163,19 +209,20 @@ double far_field_miss(const std::vector<double>& interpolated, const std::vector
 }
 
 DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
-                                      double tolerance, int max_levels, std::size_t max_vertices) {
-  DirectionRefinement out{pan::DirectionMesh(spec.divisions, max_levels), 0, 0};
+                                      double tolerance, int max_levels, std::size_t max_vertices, double yardstick_l2) {
+  DirectionRefinement out{pan::uniform_mesh(spec.divisions, max_levels), 0, {}, 0};
   auto& mesh = out.mesh;
-  std::unordered_map<std::int64_t, std::vector<double>> far;  // by lattice point: vertices and split points
   auto at = [&](const pan::LatticePoint& p) -> const std::vector<double>& {
-    auto it = far.find(p.key());
-    if (it == far.end()) {
-      it = far.emplace(p.key(), aligned_far_field(spec, proxy, surface, mesh.direction(p))).first;
-      ++out.far_fields;
-    }
+    auto it = out.far_fields.find(pan::lattice_key(p));
+    if (it == out.far_fields.end())
+      it = out.far_fields.emplace(pan::lattice_key(p), aligned_far_field(spec, proxy, surface, mesh.direction(p))).first;
     return it->second;
   };
-  const double floor = far_field_floor(spec, proxy, surface);
+  double strongest = 0;  // layout_strength, from the layout's vertices (the unrefined mesh's)
+  for (const auto& v : mesh.vertices()) strongest = std::max(strongest, l2(at(v)));
+  out.strongest_l2 = strongest;
+  strongest = std::max(strongest, yardstick_l2);
+  const double floor = floor_from_strongest(strongest);
   std::vector<double> sum(spec.length);
   auto miss = [&](const pan::LatticePoint& p, const pan::DirectionWeights& w) {
     pan::blend(w, [&](std::size_t v) -> const std::vector<double>& { return at(mesh.vertices()[v]); }, sum);

@@ -1,12 +1,14 @@
 #pragma once
 // `clatter-bank pan`: the PAN proxy bank (Chadwick et al. 2012, sections 4-5). For each proxy
 // ellipsoid (A, B, C): octant FDTD solves of the 6 rigid-body fields heard through a Kirchhoff
-// surface at 45 directions x M radii and at infinity (the far field), the radial model's wavelet
+// surface at each field's directions (the paper's 45, refined where the far field needs more:
+// refine_directions) x M radii and at infinity (the far field), the radial model's wavelet
 // coefficients of each direction (kernels/pan/fit.hpp), and the compressed bank file (io/pan_bank.hpp).
 #include <mpi.h>
 
 #include <array>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "io/config.hpp"
@@ -34,20 +36,26 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
 std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                       const std::array<double, 3>& d);
 
-// Issue 32, in progress (not yet in the bank): the field's adaptive direction set, the layout of
+// A field's adaptive direction set (the bank's, with fit.direction_tolerance): the layout of
 // spec.divisions split where quadratic interpolation of the far field misses it at a split point
-// by more than `tolerance` (relative L2; directions weaker than a tenth of the strongest vertex's
-// amplitude, 1 % of its energy, are judged against that tenth).
+// by more than `tolerance` (relative L2). Directions weaker than a tenth of the strongest far field
+// (amplitude; 1 % of its energy) are judged against that tenth: the strongest of the layout's
+// vertices, or `yardstick_l2` if larger, the proxy's strongest field known from another solve
+// (build_proxy: field 3's, times A for a rotation field). A field that does not radiate (below 1 %
+// of the yardstick's energy) is then noise below the floor and stays at the layout.
 struct DirectionRefinement {
   kernels::pan::DirectionMesh mesh;
   int splits = 0;
-  std::size_t far_fields = 0;  // far fields heard through the surface (vertices and split points)
+  // The far fields heard through the surface (vertices and split points), aligned, by lattice key.
+  std::unordered_map<std::int64_t, std::vector<double>> far_fields;
+  double strongest_l2 = 0;  // this field's layout_strength
 };
 DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
-                                      double tolerance, int max_levels, std::size_t max_vertices);
+                                      double tolerance, int max_levels, std::size_t max_vertices, double yardstick_l2 = 0);
 // The miss measure of refine_directions: |interpolated - truth| / max(|truth|, floor), L2 over time.
 double far_field_miss(const std::vector<double>& interpolated, const std::vector<double>& truth, double floor);
-// Its floor: a tenth of the strongest far field (L2) among the layout's directions, 1 % of its energy.
+// The strongest far field (L2) among the layout's directions; the floor is a tenth of it, 1 % of its energy.
+double layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface);
 double far_field_floor(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface);
 
 // Solves and fits one task on `group`; the writer of its result on the group's rank 0.

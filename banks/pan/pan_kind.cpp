@@ -32,10 +32,15 @@ class PanKind final : public BankKind {
     const auto tasks = std::make_shared<const std::vector<PanTask>>(pan_tasks(*spec));
     BankSweep sweep;
     sweep.manifest = {name(), config.to_toml()};
-    sweep.summary = fmt::format("{} proxies x {} fields = {} tasks; {} directions x ({} radii + the far field), "
+    sweep.summary = fmt::format("{} proxies x {} fields = {} tasks; {} directions{} x ({} radii + the far field), "
                                 "epsilon = {}",
                                 spec->proxies_bc_m.size(), spec->solve.fields.size(), tasks->size(),
-                                kernels::pan::vertex_count(spec->divisions), spec->radii_m.size(), spec->epsilon);
+                                kernels::pan::vertex_count(spec->divisions),
+                                spec->direction_tolerance > 0
+                                    ? fmt::format(", refined per field to {:g} % (at most {})",
+                                                  100 * spec->direction_tolerance, spec->max_directions)
+                                    : std::string(),
+                                spec->radii_m.size(), spec->epsilon);
     for (const auto& t : *tasks) sweep.task_names.push_back(t.name);
     sweep.run_task = [spec, tasks, progress_s = context.progress_interval_s](MPI_Comm group, std::size_t t) {
       return run_pan_task(group, *spec, (*tasks)[t], progress_s);

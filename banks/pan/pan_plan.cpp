@@ -28,6 +28,7 @@ Calibration calibrate(const io::Config& config, double given_rate) {
   small.fit_radii_m = {a + 6 * dx, a + 7 * dx};
   small.time_tail_s = 64 * small.time_dt_s;
   small.solve_fields = {1};
+  small.fit_direction_tolerance = 0;  // the layout's directions: a known series count
   const PanSpec spec = make_pan_spec(small);
   auto timed = [](auto&& work) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -71,7 +72,8 @@ PlanCost plan_cost(const io::Config& config, const PanSpec& spec, std::size_t n_
   const auto& g = spec.solve.problem.grid;
   c.cells = static_cast<double>(g.n[0]) * g.n[1] * g.n[2];
   c.steps = spec.solve.n_samples - 1;
-  c.updates = c.cells * c.steps;
+  // With refinement a task solves field 3 too, its floor's yardstick (build_proxy): a bound.
+  c.updates = c.cells * c.steps * (spec.direction_tolerance > 0 ? 2 : 1);
   c.cal = calibrate(config, o.rate);
   c.groups = o.ranks / o.ranks_per_task;
   c.waves = (n_tasks + static_cast<std::size_t>(c.groups) - 1) / static_cast<std::size_t>(c.groups);
@@ -92,9 +94,13 @@ std::string pan_report(const PanSpec& spec, const std::vector<PanTask>& tasks, c
   const auto& g = spec.solve.problem.grid;
   std::string out = fmt::format("plan: {}: {} proxies x {} fields = {} tasks\n", o.config_path.empty() ? "defaults" : o.config_path,
                                 spec.proxies_bc_m.size(), spec.solve.fields.size(), tasks.size());
-  out += fmt::format("  per task:    {} grid {}x{}x{} = {:.3g} M cells, {} steps: {:.3g} cell-updates; {:.0f} series "
-                     "through the Kirchhoff surface\n",
-                     g.octant ? "octant" : "full", g.n[0], g.n[1], g.n[2], c.cells / 1e6, c.steps, c.updates, c.series);
+  out += fmt::format("  per task:    {} grid {}x{}x{} = {:.3g} M cells, {} steps: {:.3g} cell-updates; {}{:.0f} series "
+                     "through the Kirchhoff surface{}\n",
+                     g.octant ? "octant" : "full", g.n[0], g.n[1], g.n[2], c.cells / 1e6, c.steps, c.updates,
+                     spec.direction_tolerance > 0 ? "up to " : "", c.series,
+                     spec.direction_tolerance > 0 ? fmt::format(" (adaptive directions: fit.max_directions = {} bounds "
+                                                                "them; the time is a bound too)", spec.max_directions)
+                                                  : std::string());
   out += fmt::format("  memory:      {:.1f} bytes/cell -> {:.0f} MiB per rank with {} rank(s) per task (+ {:.0f} MiB of "
                      "listener records on each group's rank 0, counted)\n",
                      c.cal.bytes_per_cell, c.rank_bytes / 1048576.0, o.ranks_per_task, c.listener_bytes / 1048576.0);

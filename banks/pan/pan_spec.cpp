@@ -39,8 +39,15 @@ const io::Schema& pan_schema() {
          "the M stored radii [m], ascending, outside the Kirchhoff surface (A + 3 cells); rounded to whole steps of "
          "c dt. R p is interpolated in 1/R between them and the far field (docs/pan.md, \"The radial model\")",
          {0.0, 1e4, true}},
-        {"fit.divisions", std::int64_t{8}, "octant edges cut in d (even): (d+1)(d+2)/2 directions, d^2 triangles; 8: "
-                                           "the paper's 45 and 64", {2, 64}},
+        {"fit.divisions", std::int64_t{8}, "the layout every field's directions start from: octant edges cut in d (2, "
+                                           "4, 8, 16, 32 or 64), (d+1)(d+2)/2 directions; 8: the paper's 45", {2, 64}},
+        {"fit.direction_tolerance", 0.04, "refine each field's directions where quadratic interpolation of its far "
+                                          "field between them misses it by more than this (relative L2) at a split "
+                                          "point; 0: the layout of fit.divisions only (docs/pan.md, \"Adaptive "
+                                          "directions\")", {0.0, 1.0}},
+        {"fit.direction_levels", std::int64_t{3}, "splits at most below an element of the layout (each quarters "
+                                                  "its size)", {0, 8}},
+        {"fit.max_directions", std::int64_t{1000}, "stop refining a field at this many directions", {3, 100000}},
         {"fit.epsilon", 0.01, "keep wavelet coefficient j iff |p^_i^j| >= epsilon ||p^_i||_inf at some radius i or at infinity (the far field)", {0.0, 1.0}},
         {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
         {"solver.scheme", std::string("me4"), "update away from the body: me4 (fourth order in space and time, "
@@ -71,6 +78,9 @@ PanParams parse_pan_params(const io::Config& config) {
   p.solve_fields = config.reals("solve.fields");
   p.fit_radii_m = config.reals("fit.radii_m");
   p.fit_divisions = static_cast<int>(config.integer("fit.divisions"));
+  p.fit_direction_tolerance = config.real("fit.direction_tolerance");
+  p.fit_direction_levels = static_cast<int>(config.integer("fit.direction_levels"));
+  p.fit_max_directions = static_cast<int>(config.integer("fit.max_directions"));
   p.fit_epsilon = config.real("fit.epsilon");
   p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
   p.solver_scheme = config.string("solver.scheme");
@@ -147,8 +157,16 @@ PanSpec make_pan_spec(const PanParams& in) {
                                    c, spec.a_m));
   }
   spec.divisions = in.fit_divisions;
-  if (spec.divisions % 2 != 0)  // the quadratic direction elements group the triangles in fours
-    throw InputError(fmt::format("config: key 'fit.divisions' has {}: must be even", spec.divisions));
+  spec.layout_levels = 0;
+  while ((2 << spec.layout_levels) < spec.divisions) ++spec.layout_levels;
+  if ((2 << spec.layout_levels) != spec.divisions)  // the layout is the 2-division octant split uniformly
+    throw InputError(fmt::format("config: key 'fit.divisions' has {}: must be 2, 4, 8, 16, 32 or 64", spec.divisions));
+  spec.direction_tolerance = in.fit_direction_tolerance;
+  spec.direction_levels = in.fit_direction_levels;
+  spec.max_directions = static_cast<std::size_t>(in.fit_max_directions);
+  if (spec.direction_tolerance > 0 && spec.max_directions < static_cast<std::size_t>(pan::vertex_count(spec.divisions)))
+    throw InputError(fmt::format("config: key 'fit.max_directions' has {}: fewer than the layout's {} directions "
+                                 "(fit.divisions = {})", spec.max_directions, pan::vertex_count(spec.divisions), spec.divisions));
   spec.epsilon = in.fit_epsilon;
   const double c_m_s = in.medium_c_m_s, dt = in.time_dt_s, dx = in.grid_dx_m;
   if (in.fit_radii_m.empty()) throw InputError("config: key 'fit.radii_m' is empty: give at least one radius");
@@ -185,8 +203,8 @@ model::PanBankHeader pan_header(const PanSpec& spec) {
   h.a_m = spec.a_m;
   h.length = spec.length;
   h.radii_m = spec.radii_m;
-  h.directions = pan::direction_vertices(spec.divisions);
-  for (const auto& t : pan::direction_triangles(spec.divisions)) h.triangles.push_back({t[0], t[1], t[2]});
+  h.divisions = 2;  // every set refines the 2-division octant: the layout's directions are coded hierarchically too
+  h.max_levels = spec.layout_levels + spec.direction_levels;
   return h;
 }
 
@@ -199,7 +217,9 @@ std::vector<PanTask> pan_tasks(const PanSpec& spec) {
 }
 
 double pan_series_per_task(const PanSpec& spec) {
-  return static_cast<double>(pan::vertex_count(spec.divisions)) * static_cast<double>(spec.radii_m.size() + 1);
+  const double layout = pan::vertex_count(spec.divisions), radii = static_cast<double>(spec.radii_m.size());
+  if (spec.direction_tolerance == 0) return layout * (radii + 1);
+  return static_cast<double>(spec.max_directions) * (radii + 3);
 }
 
 }  // namespace clatter::jobs

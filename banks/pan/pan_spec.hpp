@@ -27,7 +27,14 @@ struct PanSpec {
   // The retarded frame starts A/c before the pulse: no listener outside the bounding sphere hears
   // anything before t - R/c = -2h - A/c. Each series is shifted by shift_steps[i] - lead_steps.
   int lead_steps = 0;
-  int divisions = 8;                   // octant triangulation: 8 -> 45 directions (the paper's)
+  int divisions = 8;                   // the layout: octant triangulation, 8 -> 45 directions (the paper's)
+  int layout_levels = 2;               // uniform splits of the 2-division root that make it (divisions = 2^(1 + levels))
+  // Each field's directions: the layout refined where the far field between directions misses it
+  // by more than direction_tolerance (0: the layout itself), at most direction_levels splits deep and
+  // max_directions vertices (jobs::refine_directions).
+  double direction_tolerance = 0.04;
+  int direction_levels = 3;
+  std::size_t max_directions = 1000;
   double epsilon = 0.01;
   std::uint32_t length = 0;            // wavelet length T
 };
@@ -45,6 +52,9 @@ struct PanParams {
   std::vector<double> solve_fields;
   std::vector<double> fit_radii_m;
   int fit_divisions = 0;
+  double fit_direction_tolerance = 0;
+  int fit_direction_levels = 0;
+  int fit_max_directions = 0;
   double fit_epsilon = 0;
   int solver_cut_cell_samples = 0;
   std::string solver_scheme = "me4";
@@ -67,7 +77,9 @@ struct PanTask {
   std::string name;
 };
 std::vector<PanTask> pan_tasks(const PanSpec& spec);
-// Series a task hears through the Kirchhoff surface: directions x (radii + the far field).
+// Series a task hears through the Kirchhoff surface, at most: directions x (radii + the far field),
+// and with refinement the far fields at split points that did not become directions (about two per
+// direction, measured: docs/pan.md). With refinement the direction count is max_directions, a bound.
 double pan_series_per_task(const PanSpec& spec);
 
 }  // namespace clatter::jobs

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -13,23 +15,44 @@
 #include "core/errors.hpp"
 #include "io/h5.hpp"
 #include "io/pan_bank.hpp"
+#include "kernels/pan/directions.hpp"
 #include "kernels/pan/field.hpp"
 
 namespace clatter::jobs {
 
+namespace {
+
+// io's checks and the kernels' replay of every direction set (kernels/pan/field.hpp).
+model::PanBank read_checked(const std::string& path) {
+  model::PanBank bank = io::read_pan_bank(path);
+  try {
+    kernels::pan::check_direction_sets(bank);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(path + ": " + e.what());
+  }
+  return bank;
+}
+
+}  // namespace
+
 std::string pan_bank_info(const std::string& path) {
-  const model::PanBank bank = io::read_pan_bank(path);
+  const model::PanBank bank = read_checked(path);
   const auto& h = bank.header;
   auto file = io::File::open(path);
   auto prov = [&](const char* key) { return io::read_string_attribute(file, "/provenance", key); };
   auto run = [&](const char* key) { return io::read_string_attribute(file, "/provenance/run", key); };
-  std::size_t kept = 0;
+  std::size_t kept = 0, directions = 0, fields = 0, fewest = SIZE_MAX, most = 0;
   for (const auto& p : bank.proxies)
-    for (const auto& f : p.fields)
-      for (const auto& d : f) kept += d.index.size();
+    for (const auto& f : p.fields) {
+      if (!f.solved()) continue;
+      for (const auto& d : f.terms) kept += d.index.size();
+      ++fields;
+      directions += f.terms.size();
+      fewest = std::min(fewest, f.terms.size());
+      most = std::max(most, f.terms.size());
+    }
   const double file_mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
-  const double raw_mb = static_cast<double>(bank.proxies.size()) * 6 * static_cast<double>(h.directions.size()) *
-                        static_cast<double>(h.values()) * h.length * 4 / 1e6;
+  const double raw_mb = static_cast<double>(directions) * static_cast<double>(h.values()) * h.length * 4 / 1e6;
   std::string out = fmt::format("{}: PAN bank (format {} v{})\n", path, io::kPanBankFormat, io::kPanBankFormatVersion);
   out += fmt::format("  proxies:     {} ellipsoids, A = {} m, fields 1-6 (translation x y z, rotation x y z)\n",
                      bank.proxies.size(), h.a_m);
@@ -41,8 +64,12 @@ std::string pan_bank_info(const std::string& path) {
   out += fmt::format("  sampling:    {:.6g} Hz, wavelet length {} (Daubechies 10)\n", 1.0 / h.dt_s, h.length);
   std::string radii;
   for (double r : h.radii_m) radii += fmt::format(" {:.4g}", r);
-  out += fmt::format("  fit:         {} directions x {} radii [m]:{} and the far field; epsilon = {}\n",
-                     h.directions.size(), h.radii_m.size(), radii, h.epsilon);
+  out += fmt::format("  directions:  per field {} to {} ({:.1f} on average over {} fields): the octant cut in {}, split "
+                     "up to {} times (lattice {})\n", fields ? fewest : 0, most,
+                     fields ? static_cast<double>(directions) / static_cast<double>(fields) : 0.0, fields, h.divisions,
+                     h.max_levels, h.lattice());
+  out += fmt::format("  fit:         {} radii [m]:{} and the far field per direction; epsilon = {}\n", h.radii_m.size(),
+                     radii, h.epsilon);
   out += fmt::format("  size:        {:.3f} MB on disk, {} coefficients kept ({:.2f} % of {:.1f} MB as raw float32 series)\n",
                      file_mb, kept, 100.0 * file_mb / raw_mb, raw_mb);
   out += fmt::format("  provenance:  clatter {} (git {}), {} ranks, created {}\n", prov("clatter_version"),
@@ -59,18 +86,15 @@ std::string pan_bank_info(const std::string& path) {
 }
 
 std::string probe_csv(const ProbeRequest& r) {
-  const model::PanBank bank = io::read_pan_bank(r.bank_path);
+  const model::PanBank bank = read_checked(r.bank_path);
   const auto& h = bank.header;
   const model::PanProxy* proxy = nullptr;
   for (const auto& p : bank.proxies)
     if (std::abs(p.b_m - r.proxy_bc_m[0]) < 1e-9 && std::abs(p.c_m - r.proxy_bc_m[1]) < 1e-9) proxy = &p;
   if (!proxy) throw InputError(fmt::format("{}: no proxy (B, C) = ({}, {}) in the bank (see clatter-bank info)", r.bank_path,
                                            r.proxy_bc_m[0], r.proxy_bc_m[1]));
-  if (kernels::pan::divisions_of(h.directions.size()) % 2 != 0 || h.directions.size() < 3)
-    throw InputError(fmt::format("{}: /bank/directions holds {} directions: not an octant triangulation with an even "
-                                 "number of divisions", r.bank_path, h.directions.size()));
   if (r.field < 1 || r.field > 6) throw InputError(fmt::format("--field {}: the bank holds fields 1-6", r.field));
-  if (proxy->field(r.field).size() != h.directions.size())
+  if (!proxy->solved(r.field))
     throw InputError(fmt::format("{}: field {} was not solved for this proxy", r.bank_path, r.field));
   if (!(r.scale > 0)) throw InputError(fmt::format("--scale {}: must be > 0", r.scale));
   if (!(r.rate_hz >= 0)) throw InputError(fmt::format("--rate {}: must be >= 0 Hz (0: the bank's own rate)", r.rate_hz));

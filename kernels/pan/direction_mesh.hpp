@@ -20,14 +20,14 @@
 #include <vector>
 
 #include "kernels/pan/directions.hpp"
+#include "model/pan_bank.hpp"
 
 namespace clatter::kernels::pan {
 
-struct LatticePoint {
-  std::int32_t a = 0, b = 0;
-  bool operator==(const LatticePoint&) const = default;
-  std::int64_t key() const { return (static_cast<std::int64_t>(a) << 32) | static_cast<std::uint32_t>(b); }  // for maps
-};
+using model::LatticePoint;
+inline std::int64_t lattice_key(const LatticePoint& p) {  // for maps
+  return (static_cast<std::int64_t>(p.a) << 32) | static_cast<std::uint32_t>(p.b);
+}
 
 class DirectionMesh {
  public:
@@ -35,21 +35,23 @@ class DirectionMesh {
   // lattice with room for `max_levels` splits. Its vertices are direction_vertices(divisions), in
   // that order, and locate() gives locate_direction's quadratic weights.
   DirectionMesh(int divisions, int max_levels);
-  // A stored mesh (io): throws std::invalid_argument unless the arrays form one (roots of the
-  // layout first, children after their parent, every node the lattice point its element implies).
-  DirectionMesh(int divisions, int max_levels, std::vector<LatticePoint> vertices,
-                std::vector<std::array<std::int32_t, 6>> elements, std::vector<std::int32_t> first_child);
+  // A stored set (a bank's): throws std::invalid_argument unless its arrays form a mesh of this
+  // layout and lattice (roots first, children after their parent, every node the lattice point
+  // its element implies).
+  DirectionMesh(int divisions, int max_levels, const model::PanDirections& stored);
 
   int divisions() const { return divisions_; }
   int max_levels() const { return max_levels_; }
   int lattice() const { return lattice_; }
-  std::size_t size() const { return vertices_.size(); }
-  const std::vector<LatticePoint>& vertices() const { return vertices_; }
+  // The arrays as a bank stores them.
+  const model::PanDirections& stored() const { return set_; }
+  std::size_t size() const { return set_.vertices.size(); }
+  const std::vector<LatticePoint>& vertices() const { return set_.vertices; }
   // Nodes of each element: corners 0-2, then the midpoints of edges 01, 12, 20.
-  const std::vector<std::array<std::int32_t, 6>>& elements() const { return elements_; }
+  const std::vector<std::array<std::int32_t, 6>>& elements() const { return set_.elements; }
   // Per element, the first of its four children (consecutive), or -1 for a leaf.
-  const std::vector<std::int32_t>& first_child() const { return first_child_; }
-  std::array<double, 3> direction(std::size_t vertex) const { return direction(vertices_.at(vertex)); }
+  const std::vector<std::int32_t>& first_child() const { return set_.first_child; }
+  std::array<double, 3> direction(std::size_t vertex) const { return direction(set_.vertices.at(vertex)); }
   std::array<double, 3> direction(const LatticePoint& p) const;
   int level(std::size_t element) const { return level_.at(element); }
 
@@ -60,24 +62,28 @@ class DirectionMesh {
     std::array<double, 3> l;
   };
   std::array<SplitPoint, 9> split_points(std::size_t element) const;
-  bool can_split(std::size_t element) const { return first_child_.at(element) < 0 && level_.at(element) < max_levels_; }
+  bool can_split(std::size_t element) const { return set_.first_child.at(element) < 0 && level_.at(element) < max_levels_; }
   // Splits a leaf; the new vertices are appended (their indices from the old size() on).
   void split(std::size_t element);
 
   // Quadratic weights over the leaf holding direction d (closed positive octant).
-  DirectionWeights locate(const std::array<double, 3>& d) const;
+  DirectionWeights locate(const std::array<double, 3>& d) const;  // pan::locate(divisions(), stored(), d)
   // The six nodes' weights at barycentric coordinates l of element e.
   DirectionWeights weights(std::size_t element, const std::array<double, 3>& l) const;
 
  private:
   int vertex_at(const LatticePoint& p);  // existing or appended
   int divisions_, max_levels_, lattice_;
-  std::vector<LatticePoint> vertices_;
-  std::vector<std::array<std::int32_t, 6>> elements_;
-  std::vector<std::int32_t> first_child_;
+  model::PanDirections set_;
   std::vector<int> level_;
   std::unordered_map<std::int64_t, int> index_;  // lattice point -> vertex
 };
+
+// The uniform layout of `divisions` (2 times a power of two; 8: the paper's 45 directions) as the
+// two-division root split uniformly, with room for `extra_levels` more splits. The same directions
+// and the same quadratic elements as DirectionMesh(divisions, extra_levels), numbered from the
+// root down: a bank stores every direction below the root against its parent (io/pan_bank.cpp).
+DirectionMesh uniform_mesh(int divisions, int extra_levels);
 
 // Splits elements, coarsest first, while some split point misses by more than `tolerance`:
 // miss(point, w) is how far the interpolation with weights w over the mesh's vertices (the
@@ -96,5 +102,13 @@ void blend(const DirectionWeights& w, SeriesOf&& series, std::vector<double>& ou
   }
 }
 int refine(DirectionMesh& mesh, const DirectionMiss& miss, double tolerance, std::size_t max_vertices);
+
+// Weights at direction d (closed positive octant) over the leaf of `set` that holds it: quadratic
+// over the leaf's six nodes, or linear over the one of its four triangles (corner and midpoints)
+// that holds d; unrefined, locate_direction's. `set` is a mesh of the layout of `divisions` whose
+// indices are in range (a DirectionMesh's, or a bank's as io::read_pan_bank checks it); the
+// evaluator locates in a bank's sets in place, with no mesh built.
+DirectionWeights locate(int divisions, const model::PanDirections& set, const std::array<double, 3>& d,
+                        Interpolation interpolation = Interpolation::quadratic);
 
 }  // namespace clatter::kernels::pan

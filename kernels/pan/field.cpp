@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "kernels/fdtd/geometry.hpp"
+#include "kernels/pan/direction_mesh.hpp"
 #include "kernels/pan/directions.hpp"
 #include "kernels/pan/fit.hpp"
 #include "kernels/pan/radial.hpp"
@@ -40,23 +42,19 @@ Series evaluate_sum(const model::PanBankHeader& bank, const model::PanProxy& pro
     gain /= std::sqrt(2.0);
   }
   std::vector<double> c(n, 0.0);
-  const int divisions = divisions_of(bank.directions.size());
-  if (divisions == 0) throw std::invalid_argument("PAN evaluate: direction count is not an octant triangulation");
-  const DirectionWeights w = locate_direction(y, divisions, interpolation);
   const RadialWeights radial = radial_weights(bank.radii_m, r);
   for (std::size_t i = 0; i < weights.size(); ++i) {
     const int field = static_cast<int>(i) + 1;
     if (!proxy.solved(field) || weights[i] == 0) continue;
-    const std::vector<model::SparseTerms>& directions = proxy.field(field);
-    if (directions.size() != bank.directions.size())
-      throw std::invalid_argument("PAN evaluate: a field's direction count differs from the bank's");
+    const model::PanField& f = proxy.field(field);
+    const DirectionWeights w = locate(bank.divisions, f.directions, y, interpolation);  // each field its own set
     double sign = 1.0;  // eqs. (16)-(21)
     for (int a = 0; a < 3; ++a)
       if (x_m[a] < 0) sign *= fdtd::field_parity(field, a);
     const double scale = weights[i] * sign * (field <= 3 ? beta : beta * beta) * gain;
     for (std::size_t v = 0; v < static_cast<std::size_t>(w.count); ++v)
       if (w.weight[v] != 0)
-        accumulate(directions.at(static_cast<std::size_t>(w.vertex[v])), bank.values(), radial, scale * w.weight[v], c);
+        accumulate(f.terms.at(static_cast<std::size_t>(w.vertex[v])), bank.values(), radial, scale * w.weight[v], c);
   }
   // Every direction was stored aligned by its support distance (fit.hpp): shift by the query's.
   const double delay = support_delay_samples({y[0] / r, y[1] / r, y[2] / r}, bank.a_m, proxy.b_m, proxy.c_m, bank.c_m_s, bank.dt_s);
@@ -70,6 +68,25 @@ Series evaluate_sum(const model::PanBankHeader& bank, const model::PanProxy& pro
   s.t0_s = beta * (bank.t_first_s + r / bank.c_m_s - delay * bank.dt_s + lag_s);
   s.p = std::move(c);
   return s;
+}
+
+}  // namespace clatter::kernels::pan
+
+namespace clatter::kernels::pan {
+
+void check_direction_sets(const model::PanBank& bank) {
+  for (std::size_t p = 0; p < bank.proxies.size(); ++p)
+    for (int field = 1; field <= 6; ++field) {
+      const model::PanField& f = bank.proxies[p].field(field);
+      if (!f.solved()) continue;
+      try {
+        const DirectionMesh mesh(bank.header.divisions, bank.header.max_levels, f.directions);
+        if (mesh.size() != f.terms.size()) throw std::invalid_argument("one set of terms per vertex needed");
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("proxy " + std::to_string(p) + " field " + std::to_string(field) +
+                                    ": its direction set is not a refinement of the layout: " + e.what());
+      }
+    }
 }
 
 }  // namespace clatter::kernels::pan

@@ -37,4 +37,9 @@ Series evaluate_sum(const model::PanBankHeader& bank, const model::PanProxy& pro
                     const std::array<double, 3>& x_m, double beta = 1.0, double output_rate_hz = 0.0,
                     Interpolation interpolation = Interpolation::quadratic);
 
+// Throws std::invalid_argument naming the proxy and field unless every solved field's direction set
+// is a refinement of the bank's layout on its lattice (DirectionMesh's replay, which io cannot do:
+// io::read_pan_bank checks only that its indices are in range).
+void check_direction_sets(const model::PanBank& bank);
+
 }  // namespace clatter::kernels::pan

@@ -23,22 +23,12 @@ const std::vector<fuzz::H5Item>& template_items() {
 
 void check(const model::PanBank& bank) {
   const auto& h = bank.header;
-  const std::size_t n_dirs = h.directions.size(), n_values = h.values();
   for (std::size_t i = 0; i < h.radii_m.size(); ++i)  // the radial model's nodes (kernels/pan/radial.hpp)
     if (!(h.radii_m[i] > 0) || (i > 0 && !(h.radii_m[i] > h.radii_m[i - 1]))) fuzz::broken("radii not positive ascending");
-  for (const auto& t : h.triangles)
-    for (int v : t)
-      if (v < 0 || static_cast<std::size_t>(v) >= n_dirs) fuzz::broken("triangle corner out of range");
-  for (const auto& p : bank.proxies) {
-    for (const auto& field : p.fields) {
-      if (!field.empty() && field.size() != n_dirs) fuzz::broken("terms per direction");
-      for (const auto& d : field) {
-        if (d.value.size() != d.index.size() * n_values) fuzz::broken("values per index");
-        for (std::size_t e = 0; e < d.index.size(); ++e)
-          if (d.index[e] >= h.length || (e > 0 && d.index[e] <= d.index[e - 1])) fuzz::broken("index order/range");
-      }
-    }
-  }
+  if (h.divisions < 2 || h.divisions % 2 != 0 || h.max_levels < 0 || h.max_levels > 16 || h.divisions > (1 << 20) >> h.max_levels)
+    fuzz::broken("layout or lattice out of range");
+  for (const auto& p : bank.proxies)
+    for (const auto& field : p.fields) fuzz::check_field(field, h.divisions, h.lattice(), h.values(), h.length);
 }
 
 }  // namespace

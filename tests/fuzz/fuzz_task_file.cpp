@@ -21,7 +21,7 @@ const std::vector<fuzz::H5Item>& template_items() {
   static const std::vector<fuzz::H5Item> items = [] {
     const std::string path = fuzz::scratch_path("template-task.h5");
     const io::TaskPayloadWriter payload = [](io::File& file, const std::string& group) {
-      io::write_pan_task(file, group, fuzz::template_task(), fuzz::kTemplateValues);
+      io::write_pan_task(file, group, fuzz::template_task(), fuzz::template_bank().header.lattice(), fuzz::kTemplateValues);
     };
     io::write_task_file(path, kSweepId, kTask, "done", "", &payload);
     return fuzz::take_apart(path);
@@ -43,12 +43,9 @@ void rehash(std::vector<fuzz::H5Item>& items, const std::string& path) {
 }
 
 void check(const model::PanTaskResult& t) {
-  if (t.directions.size() != fuzz::kTemplateDirections) fuzz::broken("terms per direction");
-  for (const auto& d : t.directions) {
-    if (d.value.size() != d.index.size() * fuzz::kTemplateValues) fuzz::broken("values per index");
-    for (std::size_t e = 0; e < d.index.size(); ++e)
-      if (d.index[e] >= fuzz::kTemplateLength || (e > 0 && d.index[e] <= d.index[e - 1])) fuzz::broken("index order/range");
-  }
+  const auto& h = fuzz::template_bank().header;
+  if (!t.fit.solved()) fuzz::broken("a task without directions");
+  fuzz::check_field(t.fit, h.divisions, h.lattice(), h.values(), h.length);
 }
 
 }  // namespace
@@ -65,7 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (record.state != io::TaskState::done) return 0;
   try {
     const io::File file = io::File::open(path);
-    check(io::read_pan_task(file, "/result", fuzz::kTemplateValues, fuzz::kTemplateDirections, fuzz::kTemplateLength));
+    check(io::read_pan_task(file, "/result", fuzz::template_bank().header));
   } catch (const std::runtime_error&) {
   }
   return 0;

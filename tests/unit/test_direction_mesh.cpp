@@ -53,8 +53,41 @@ TEST(DirectionMesh, UnrefinedItIsTheUniformLayout) {
         EXPECT_EQ(a.vertex[k], b.vertex[k]);
         EXPECT_NEAR(a.weight[k], b.weight[k], 1e-12);
       }
+      // Linear: the same triangle of the layout (its corners in another order), the same weights.
+      const DirectionWeights la = locate(d, mesh.stored(), x, Interpolation::linear);
+      const DirectionWeights lb = locate_direction(x, d, Interpolation::linear);
+      ASSERT_EQ(la.count, 3);
+      ASSERT_EQ(lb.count, 3);
+      for (std::size_t k = 0; k < 3; ++k) {
+        double w = 0;
+        for (std::size_t j = 0; j < 3; ++j)
+          if (la.vertex[j] == lb.vertex[k]) w += la.weight[j];
+        EXPECT_NEAR(w, lb.weight[k], 1e-12) << x[0] << " " << x[1] << " " << x[2];
+      }
     }
   }
+}
+
+TEST(DirectionMesh, TheLayoutBuiltFromTheTwoDivisionRootIsTheSameLayout) {
+  // A bank's sets start from the 2-division octant split uniformly (uniform_mesh): the same
+  // directions and the same quadratic interpolant as the layout itself, numbered root first.
+  for (int d : {2, 4, 8, 16}) {
+    const DirectionMesh layout(d, 2), tree = uniform_mesh(d, 2);
+    EXPECT_EQ(tree.divisions(), 2);
+    ASSERT_EQ(tree.size(), layout.size());
+    for (std::size_t v = 0; v < tree.size(); ++v) {
+      bool found = false;
+      for (std::size_t w = 0; w < layout.size() && !found; ++w) found = tree.vertices()[v] == layout.vertices()[w];
+      EXPECT_TRUE(found) << d << " " << v;
+    }
+    std::mt19937 rng(d);
+    auto wiggly = [](const std::array<double, 3>& x) { return std::sin(5 * x[0]) + std::cos(7 * x[1] * x[2]); };
+    for (int i = 0; i < 500; ++i) {
+      const auto x = random_direction(rng);
+      EXPECT_NEAR(interpolate(tree, tree.locate(x), wiggly), interpolate(layout, layout.locate(x), wiggly), 1e-12) << d;
+    }
+  }
+  EXPECT_THROW(uniform_mesh(12, 1), std::invalid_argument);
 }
 
 TEST(DirectionMesh, RefinedItReproducesQuadraticsAndSharesVertices) {
@@ -85,19 +118,21 @@ TEST(DirectionMesh, StoredArraysRoundTripAndWrongOnesAreRefused) {
   mesh.split(5);
   mesh.split(2);
   mesh.split(static_cast<std::size_t>(mesh.first_child()[5] + 3));  // a centre child
-  const DirectionMesh copy(8, 3, mesh.vertices(), mesh.elements(), mesh.first_child());
+  const DirectionMesh copy(8, 3, mesh.stored());
   EXPECT_EQ(copy.vertices(), mesh.vertices());
   EXPECT_EQ(copy.elements(), mesh.elements());
-  auto vertices = mesh.vertices();
-  vertices[50].a += 1;
-  EXPECT_THROW(DirectionMesh(8, 3, vertices, mesh.elements(), mesh.first_child()), std::invalid_argument);
-  auto children = mesh.first_child();
-  children[0] = 3;  // a root as its own... children
-  EXPECT_THROW(DirectionMesh(8, 3, mesh.vertices(), mesh.elements(), children), std::invalid_argument);
-  auto elements = mesh.elements();
-  std::swap(elements[20][0], elements[20][1]);
-  EXPECT_THROW(DirectionMesh(8, 3, mesh.vertices(), elements, mesh.first_child()), std::invalid_argument);
-  EXPECT_THROW(DirectionMesh(8, 3, mesh.vertices(), mesh.elements(), {}), std::invalid_argument);
+  auto changed = [&](auto&& change) {
+    clatter::model::PanDirections set = mesh.stored();
+    change(set);
+    return set;
+  };
+  EXPECT_THROW(DirectionMesh(8, 3, changed([](auto& s) { s.vertices[50].a += 1; })), std::invalid_argument);
+  // a root as its own... children
+  EXPECT_THROW(DirectionMesh(8, 3, changed([](auto& s) { s.first_child[0] = 3; })), std::invalid_argument);
+  EXPECT_THROW(DirectionMesh(8, 3, changed([](auto& s) { std::swap(s.elements[20][0], s.elements[20][1]); })),
+               std::invalid_argument);
+  EXPECT_THROW(DirectionMesh(8, 3, changed([](auto& s) { s.first_child.clear(); })), std::invalid_argument);
+  EXPECT_THROW(DirectionMesh(8, 2, mesh.stored()), std::invalid_argument);  // another lattice
   EXPECT_THROW(DirectionMesh(7, 3), std::invalid_argument);
 }
 

@@ -144,7 +144,7 @@ void report(const char* what, double k, const BodyResult& r) {
 // and a made-up smooth vibration.
 TEST(MeshTransferBody, SmoothAsymmetricBodyFarFieldMatchesKirchhoffHelmholtz) {
   const double a = 0.05;
-  auto radius = [a](const std::array<double, 3>& p) {
+  auto radius = [](const std::array<double, 3>& p) {
     const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     const double x = p[0] / n, y = p[1] / n, z = p[2] / n;
     return std::array<double, 3>{x, y, z} ;
