@@ -40,9 +40,9 @@ std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, co
 // spec.divisions split where quadratic interpolation of the far field misses it at a split point
 // by more than `tolerance` (relative L2). Directions weaker than a tenth of the strongest far field
 // (amplitude; 1 % of its energy) are judged against that tenth: the strongest of the layout's
-// vertices, or `yardstick_l2` if larger, the proxy's strongest field known from another solve
-// (build_proxy: field 3's, times A for a rotation field). A field that does not radiate (below 1 %
-// of the yardstick's energy) is then noise below the floor and stays at the layout.
+// vertices. A field that does not radiate, below 1 % of `yardstick_l2`'s energy (the proxy's
+// strongest field known from another solve; build_proxy: field 3's, times A for a rotation field),
+// is judged against the yardstick instead: its noise stays at the layout.
 struct DirectionRefinement {
   kernels::pan::DirectionMesh mesh;
   int splits = 0;
@@ -57,6 +57,13 @@ double far_field_miss(const std::vector<double>& interpolated, const std::vector
 // The strongest far field (L2) among the layout's directions; the floor is a tenth of it, 1 % of its energy.
 double layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface);
 double far_field_floor(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface);
+
+// The held-out check (tests, clatter-pan-held-out-study): the relative L2 of the bank's field at
+// x against a raw series heard there in the same solve (build_proxy's extra listeners, the solve's
+// samples), the bank read at the raw sample times by cubic Lagrange interpolation.
+double held_out_error(const PanSpec& spec, const model::PanBankHeader& header, const model::PanProxy& proxy, int field,
+                      const std::array<double, 3>& x_m, const float* raw,
+                      kernels::pan::Interpolation interpolation = kernels::pan::Interpolation::quadratic);
 
 // Solves and fits one task on `group`; the writer of its result on the group's rank 0.
 TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s);

@@ -109,33 +109,13 @@ std::vector<double> errors_at(const jobs::PanSpec& spec, const std::vector<doubl
   const auto proxy = through_file(spec, result.proxy, "pan_heldout.h5");
   const auto header = jobs::pan_header(spec);
   const std::size_t ns = static_cast<std::size_t>(spec.solve.n_samples);
-  const double dt = spec.solve.problem.dt_s;
   for (std::size_t f = 0; f < spec.solve.fields.size(); ++f) {
     const int field = spec.solve.fields[f];
     std::printf("%2d divisions, %-9s field %d, relative L2 at r =", divisions,
                 interpolation == kernels::pan::Interpolation::linear ? "linear," : "quadratic,", field);
     for (std::size_t l = 0; l < points.size(); ++l) {
-      const auto s = kernels::pan::evaluate({&header, &proxy, field}, points[l], 1.0, 0.0, interpolation);
-      // PAN sample k is at t0 + k dt; t0 is a whole number of steps from raw sample 0 up to the
-      // interpolated direction delay: the PAN series is read at the raw sample times by cubic
-      // Lagrange interpolation (rounding the offset instead cost up to 5 % on field 4 of an
-      // elongated proxy).
-      const double offset = (s.t0_s + spec.solve.i_time_zero * dt) / dt;
-      const long whole = static_cast<long>(std::floor(offset));
-      const double frac = offset - static_cast<double>(whole);  // raw sample k = PAN index k - whole - frac
-      auto pan_at = [&](long j) { return j >= 0 && j < static_cast<long>(s.p.size()) ? s.p[static_cast<std::size_t>(j)] : 0.0; };
-      const double x = 1.0 - frac;  // PAN index k - whole - 1 + x
-      const std::array<double, 4> w{-x * (x - 1) * (x - 2) / 6, (x + 1) * (x - 1) * (x - 2) / 2, -(x + 1) * x * (x - 2) / 2,
-                                    (x + 1) * x * (x - 1) / 6};
-      const float* raw = result.extra_series[f].data() + l * ns;
-      double num = 0, den = 0;
-      for (std::size_t k = 0; k < ns; ++k) {
-        const long j = static_cast<long>(k) - whole - 1;
-        const double pan = w[0] * pan_at(j - 1) + w[1] * pan_at(j) + w[2] * pan_at(j + 1) + w[3] * pan_at(j + 2);
-        num += (pan - raw[k]) * (pan - raw[k]);
-        den += double{raw[k]} * raw[k];
-      }
-      const double err = std::sqrt(num / den);
+      const double err =
+          jobs::held_out_error(spec, header, proxy, field, points[l], result.extra_series[f].data() + l * ns, interpolation);
       worst[f] = std::max(worst[f], err);
       std::printf(" %.3f m: %.4f%s", radii[l], err, l + 1 < points.size() ? "," : "\n");
     }
