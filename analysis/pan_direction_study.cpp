@@ -12,12 +12,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "analysis/pan_study_options.hpp"
 #include "banks/pan/pan_job.hpp"
 #include "banks/pan/pan_spec.hpp"
 #include "kernels/pan/direction_mesh.hpp"
@@ -35,29 +34,17 @@ double percentile(std::vector<double> v, double q) {
 
 int study(mpi::Session& session, int argc, char** argv) {
   CLI::App app{"clatter-pan-direction-study: adaptive against uniform direction sets (issue 32)"};
-  std::string config_path;
-  std::vector<double> bc{0.2625, 0.12};
+  analysis::PanStudyOptions options;
   std::vector<int> fields{1};
   double tolerance = 0.02;
   int levels = 3, tests = 256;
-  std::vector<std::string> sets;
-  app.add_option("-c,--config", config_path, "PAN config (default: the built-in defaults, the paper's resolution)");
-  app.add_option("--proxy", bc, "B,C [m]")->delimiter(',')->expected(2);
+  options.add_to(app);
   app.add_option("--fields", fields, "fields 1-6")->delimiter(',');
   app.add_option("--tolerance", tolerance, "refine where a split point misses by more than this (relative L2)");
   app.add_option("--levels", levels, "splits below a root at most");
   app.add_option("--tests", tests, "random test directions");
-  app.add_option("--set", sets, "config override key=value");
   CLI11_PARSE(app, argc, argv);
-  io::Config config(jobs::pan_schema());
-  if (!config_path.empty()) {
-    std::ifstream in(config_path);
-    std::stringstream text;
-    text << in.rdbuf();
-    config.merge_toml(text.str(), config_path);
-  }
-  for (const auto& s : sets) config.set(s);
-  config.set("proxies.list_m=[[" + std::to_string(bc[0]) + ", " + std::to_string(bc[1]) + "]]");
+  io::Config config = options.config();
   std::string list = "solve.fields=[";
   for (std::size_t i = 0; i < fields.size(); ++i) list += (i ? ", " : "") + std::to_string(fields[i]);
   config.set(list + "]");

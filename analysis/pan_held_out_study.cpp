@@ -15,12 +15,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "analysis/pan_study_options.hpp"
 #include "banks/pan/pan_job.hpp"
 #include "banks/pan/pan_spec.hpp"
 #include "io/pan_bank.hpp"
@@ -38,30 +37,18 @@ double percentile(std::vector<double> v, double q) {
 
 int study(mpi::Session& session, int argc, char** argv) {
   CLI::App app{"clatter-pan-held-out-study: a proxy's bank against its raw field at held-out points (issue 32)"};
-  std::string config_path, bank_path = "held_out_study.h5";
-  std::vector<double> bc{0.2625, 0.12}, radii{0.77, 1.1, 1.75, 2.5, 3.0};
+  analysis::PanStudyOptions options;
+  std::string bank_path = "held_out_study.h5";
+  std::vector<double> radii{0.77, 1.1, 1.75, 2.5, 3.0};
   int directions = 8;
   unsigned seed = 3;
-  std::vector<std::string> sets;
-  app.add_option("-c,--config", config_path, "PAN config (default: the built-in defaults, the paper's resolution)");
-  app.add_option("--proxy", bc, "B,C [m]")->delimiter(',')->expected(2);
+  options.add_to(app);
   app.add_option("--radii", radii, "held-out radii [m]")->delimiter(',');
   app.add_option("--directions", directions, "random held-out directions");
   app.add_option("--seed", seed, "of the random directions");
   app.add_option("--bank", bank_path, "where the one-proxy bank is written and read back");
-  app.add_option("--set", sets, "config override key=value");
   CLI11_PARSE(app, argc, argv);
-  io::Config config(jobs::pan_schema());
-  std::string text;
-  if (!config_path.empty()) {
-    std::ifstream in(config_path);
-    std::stringstream s;
-    s << in.rdbuf();
-    text = s.str();
-    config.merge_toml(text, config_path);
-  }
-  for (const auto& s : sets) config.set(s);
-  config.set("proxies.list_m=[[" + std::to_string(bc[0]) + ", " + std::to_string(bc[1]) + "]]");
+  const io::Config config = options.config();
   const auto spec = jobs::make_pan_spec(config);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
