@@ -27,11 +27,6 @@ namespace {
 using namespace clatter;
 namespace pan = kernels::pan;
 
-double percentile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size()) - 1, q * static_cast<double>(v.size())))];
-}
-
 int study(mpi::Session& session, int argc, char** argv) {
   CLI::App app{"clatter-pan-direction-study: adaptive against uniform direction sets (issue 32)"};
   analysis::PanStudyOptions options;
@@ -79,7 +74,7 @@ int study(mpi::Session& session, int argc, char** argv) {
       int above = 0;
       for (double m : misses) above += m > 0.05;
       std::printf("%d,%s,%zu,%d,%zu,%.2f,%.2f,%.2f,%d\n", s.fields[fi], name.c_str(), mesh.size(), splits, far_fields,
-                  100 * percentile(misses, 0.5), 100 * percentile(misses, 0.9), 100 * percentile(misses, 1.0), above);
+                  100 * analysis::percentile(misses, 0.5), 100 * analysis::percentile(misses, 0.9), 100 * analysis::percentile(misses, 1.0), above);
       std::fflush(stdout);
     };
     for (int d : {spec.divisions, 2 * spec.divisions, 4 * spec.divisions}) report("uniform-" + std::to_string(d), pan::DirectionMesh(d, 0), 0, 0);

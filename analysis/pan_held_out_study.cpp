@@ -30,11 +30,6 @@ namespace {
 
 using namespace clatter;
 
-double percentile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size()) - 1, q * static_cast<double>(v.size())))];
-}
-
 int study(mpi::Session& session, int argc, char** argv) {
   CLI::App app{"clatter-pan-held-out-study: a proxy's bank against its raw field at held-out points (issue 32)"};
   analysis::PanStudyOptions options;
@@ -101,8 +96,8 @@ int study(mpi::Session& session, int argc, char** argv) {
       floored_above += floored > 0.05;
     }
     std::printf("%d,%zu,%.4f,%s,%.2f,%.2f,%.2f,%d,%zu,%.2f,%d\n", field, bank.proxies[0].field(field).terms.size(),
-                energy[f] / strongest, energy[f] >= 0.01 * strongest ? "yes" : "no (excluded)", 100 * percentile(errors, 0.5),
-                100 * percentile(errors, 0.9), 100 * percentile(errors, 1.0), above, errors.size(), 100 * floored_worst,
+                energy[f] / strongest, energy[f] >= 0.01 * strongest ? "yes" : "no (excluded)", 100 * analysis::percentile(errors, 0.5),
+                100 * analysis::percentile(errors, 0.9), 100 * analysis::percentile(errors, 1.0), above, errors.size(), 100 * floored_worst,
                 floored_above);
   }
   std::printf("bank: %s, %.3f MB\n", bank_path.c_str(), static_cast<double>(std::filesystem::file_size(bank_path)) / 1e6);

@@ -4,6 +4,7 @@
 // the one proxy (B, C) studied.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -39,5 +40,11 @@ struct PanStudyOptions {
     return out;
   }
 };
+
+// The q-quantile of v (0: smallest, 1: largest), the nearest sample below.
+inline double percentile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size()) - 1, q * static_cast<double>(v.size())))];
+}
 
 }  // namespace clatter::analysis

@@ -444,7 +444,7 @@ PanBank read_pan_bank(const std::string& path) {
         throw InputError(path + ": '/directions' set " + std::to_string(p * 6 + f) + " (proxy " + std::to_string(p) +
                          ", field " + std::to_string(f + 1) + "): " + e.what());
       }
-      std::vector<std::vector<double>> decoded(out.directions.vertices.size(), std::vector<double>());
+      std::vector<std::vector<double>> decoded(out.directions.vertices.size());
       out.terms.resize(out.directions.vertices.size());
       for (std::size_t v = 0; v < out.terms.size(); ++v, ++row) {
         if (offsets[row] > offsets[row + 1] || offsets[row + 1] > delta.size())

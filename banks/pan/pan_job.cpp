@@ -149,10 +149,12 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
       return;
     }
     auto& field = out.proxy.fields[static_cast<std::size_t>(f - 1)];
-    DirectionRefinement set{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, 0};
-    if (spec.direction_tolerance > 0)  // a rotation field per unit angular acceleration moves the surface by up to A
-      set = refine_directions(spec, proxy, surface, spec.direction_tolerance, spec.direction_levels, spec.max_directions,
-                              f <= 3 ? field_3_l2 : spec.a_m * field_3_l2);
+    // A rotation field per unit angular acceleration moves the surface by up to A.
+    const DirectionRefinement set =
+        spec.direction_tolerance > 0
+            ? refine_directions(spec, proxy, surface, spec.direction_tolerance, spec.direction_levels, spec.max_directions,
+                                f <= 3 ? field_3_l2 : spec.a_m * field_3_l2)
+            : DirectionRefinement{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, 0};
     if (f == 3) field_3_l2 = set.strongest_l2;
     std::vector<std::vector<float>> near(m, std::vector<float>(ns));
     std::vector<const float*> series;
