@@ -1,5 +1,6 @@
 #pragma once
-// The command line the PAN studies share (clatter-pan-direction-study, clatter-pan-held-out-study):
+// The command line of the PAN studies (clatter-pan-direction-study; the held-out check is each bank
+// task's own, banks/pan/pan_job.hpp):
 // a PAN config (the built-in defaults, the paper's resolution, when none is given), overrides, and
 // the one proxy (B, C) studied.
 #include <CLI/CLI.hpp>

@@ -193,18 +193,75 @@ PackedCoefficients pack_coefficients(const PanBank& bank) {
   return out;
 }
 
+// Decodes one field's rows of `c`, from `row` on (advanced past them), into out.terms, out.directions
+// given: a layout vertex's stored coefficients as they are; a made vertex's prediction plus its
+// differences, of which the evaluator gets the coefficients the fit's rule keeps (kernels/pan/fit.hpp)
+// at kCodedEpsilon times epsilon: R p at some radius or at infinity (F + D_k, or F) reaching that
+// fraction of its peak, or of a tenth of the field's. InputError prefixed by `where`.
+void unpack_field(const PanBankHeader& h, const PackedCoefficients& c, std::size_t& row, model::PanField& out,
+                  const std::string& where) {
+  if (out.directions.vertices.empty()) return;
+  const std::size_t n_values = h.values(), dense_size = h.length * n_values;
+  std::vector<Prediction> pred;
+  try {
+    pred = predictions(out.directions, layout_roots(h.divisions));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(where + ": " + e.what());
+  }
+  std::vector<std::vector<double>> decoded(out.directions.vertices.size());
+  out.terms.assign(out.directions.vertices.size(), {});
+  for (std::size_t v = 0; v < out.terms.size(); ++v, ++row) {
+    if (row + 1 >= c.offsets.size() || c.offsets[row] > c.offsets[row + 1] || c.offsets[row + 1] > c.delta.size())
+      throw InputError(where + ": '/coefficients/offsets' is not a valid partition of " + std::to_string(c.delta.size()) +
+                       " coefficients (row " + std::to_string(row) + ")");
+    auto& terms = out.terms[v];
+    std::vector<double>& dense = decoded[v];
+    dense.resize(dense_size);
+    predict(out.directions, pred[v], decoded, dense);
+    std::uint32_t j = 0;
+    for (std::uint32_t e = c.offsets[row]; e < c.offsets[row + 1]; ++e) {
+      j = e == c.offsets[row] ? c.delta[e] : j + c.delta[e];
+      if (j >= h.length || (e > c.offsets[row] && c.delta[e] == 0))
+        throw InputError(where + ": '/coefficients/index_delta' gives coefficient index " + std::to_string(j) +
+                         " outside [0, " + std::to_string(h.length) + ") or repeated");
+      if (pred[v].parent < 0) terms.index.push_back(j);
+      for (std::size_t k = 0; k < n_values; ++k) {
+        const std::int16_t q = c.quantized[e * n_values + k];
+        const float sc = c.scale[row * n_values + k];
+        dense[j * n_values + k] += static_cast<double>(q) * static_cast<double>(sc);
+        if (pred[v].parent < 0) terms.value.push_back(static_cast<float>(q) * sc);
+      }
+    }
+  }
+  std::vector<double> peak(out.terms.size(), 0.0);
+  for (std::size_t v = 0; v < out.terms.size(); ++v)
+    for (std::uint32_t n = 0; n < h.length; ++n) peak[v] = std::max(peak[v], rp_peak(&decoded[v][n * n_values], n_values));
+  const double field_peak = *std::max_element(peak.begin(), peak.end());
+  for (std::size_t v = 0; v < out.terms.size(); ++v) {
+    if (pred[v].parent < 0) continue;
+    const double small = kCodedEpsilon * h.epsilon * std::max(peak[v], 0.1 * field_peak);
+    auto& terms = out.terms[v];
+    for (std::uint32_t n = 0; n < h.length; ++n) {
+      const double* x = &decoded[v][n * n_values];
+      if (rp_peak(x, n_values) < small || rp_peak(x, n_values) == 0) continue;
+      terms.index.push_back(n);
+      for (std::size_t k = 0; k < n_values; ++k) terms.value.push_back(static_cast<float>(x[k]));
+    }
+  }
+}
+
 // Direction sets (model::PanDirections) as stored: one CSR of vertices and one of elements over the
 // sets, in (proxy, field) order for a bank; element node and child indices are local to their set.
 void write_direction_sets(File& file, const std::string& group, const std::vector<const model::PanDirections*>& sets,
                           std::int32_t lattice) {
   std::vector<std::uint32_t> vertex_offsets{0}, element_offsets{0};
   std::vector<std::int32_t> points, elements, first_child;
-  std::vector<double> unit;
+  std::vector<float> unit;  // for readers without the lattice rule (plots): float is plenty
   for (const auto* set : sets) {
     for (const auto& v : set->vertices) {
       points.insert(points.end(), {v.a, v.b});
       const double x = v.a, y = v.b, z = lattice - v.a - v.b, n = std::sqrt(x * x + y * y + z * z);
-      unit.insert(unit.end(), {x / n, y / n, z / n});
+      unit.insert(unit.end(), {static_cast<float>(x / n), static_cast<float>(y / n), static_cast<float>(z / n)});
     }
     for (const auto& e : set->elements) elements.insert(elements.end(), e.begin(), e.end());
     first_child.insert(first_child.end(), set->first_child.begin(), set->first_child.end());
@@ -214,7 +271,7 @@ void write_direction_sets(File& file, const std::string& group, const std::vecto
   const std::size_t nv = points.size() / 2, ne = first_child.size();
   write_dataset<std::uint32_t>(file, group + "/vertex_offsets", vertex_offsets, {vertex_offsets.size()}, "1", true);
   write_dataset<std::int32_t>(file, group + "/lattice", points, {nv, 2}, "1", true);
-  write_dataset<double>(file, group + "/unit", unit, {nv, 3}, "1", true);
+  write_dataset<float>(file, group + "/unit", unit, {nv, 3}, "1", true);
   write_dataset<std::uint32_t>(file, group + "/element_offsets", element_offsets, {element_offsets.size()}, "1", true);
   write_dataset<std::int32_t>(file, group + "/elements", elements, {ne, 6}, "1", true);
   write_dataset<std::int32_t>(file, group + "/first_child", first_child, {ne}, "1", true);
@@ -270,9 +327,54 @@ std::vector<model::PanDirections> read_direction_sets(const File& file, const st
   return out;
 }
 
-}  // namespace
+// Held-out checks (model::PanHeldOut) as stored: a CSR over the checks of a task or of a bank's
+// (proxy, field) pairs, in that order.
+void write_held_out(File& file, const std::string& group, const std::vector<const model::PanHeldOut*>& checks) {
+  std::vector<std::uint32_t> offsets{0};
+  std::vector<float> points, error, raw_l2;  // a check's numbers: float's 7 digits are plenty
+  for (const auto* c : checks) {
+    if (c->error.size() != c->points_m.size() || c->raw_l2.size() != c->points_m.size())
+      throw std::invalid_argument("PAN held-out check: not one error and one L2 per point");
+    for (const auto& x : c->points_m) points.insert(points.end(), x.begin(), x.end());
+    error.insert(error.end(), c->error.begin(), c->error.end());
+    raw_l2.insert(raw_l2.end(), c->raw_l2.begin(), c->raw_l2.end());
+    offsets.push_back(static_cast<std::uint32_t>(error.size()));
+  }
+  create_group(file, group);
+  write_dataset<std::uint32_t>(file, group + "/offsets", offsets, {offsets.size()}, "1", true);
+  write_dataset<float>(file, group + "/points_m", points, {error.size(), 3}, "m", true);
+  write_dataset<float>(file, group + "/error", error, {error.size()}, "1", true);
+  write_dataset<float>(file, group + "/raw_l2", raw_l2, {error.size()}, "Pa per unit acceleration", true);
+}
 
-namespace {
+std::vector<model::PanHeldOut> read_held_out(const File& file, const std::string& group, std::size_t n_checks) {
+  auto offsets = read_dataset<std::uint32_t>(file, group + "/offsets", {static_cast<long long>(n_checks) + 1}, "1");
+  Dims n;
+  auto error = read_dataset<float>(file, group + "/error", {-1}, "1", &n);
+  const auto np = static_cast<long long>(n[0]);
+  auto points = read_dataset<float>(file, group + "/points_m", {np, 3}, "m");
+  auto raw_l2 = read_dataset<float>(file, group + "/raw_l2", {np}, "Pa per unit acceleration");
+  std::vector<model::PanHeldOut> out(n_checks);
+  for (std::size_t c = 0; c < n_checks; ++c) {
+    if (offsets[c] > offsets[c + 1] || offsets[c + 1] > error.size() || (c == 0 && offsets[0] != 0) ||
+        (c + 1 == n_checks && offsets[c + 1] != error.size()))
+      throw InputError(file.path() + ": '" + group + "/offsets' is not a partition of the held-out points");
+    for (std::uint32_t k = offsets[c]; k < offsets[c + 1]; ++k) {
+      out[c].points_m.push_back({points[3 * k], points[3 * k + 1], points[3 * k + 2]});
+      out[c].error.push_back(error[k]);
+      out[c].raw_l2.push_back(raw_l2[k]);
+    }
+  }
+  return out;
+}
+
+// Optional: a bank merged before the checks were made has no /held_out.
+void read_held_out(const File& file, PanBank& bank) {
+  if (!exists(file, "/held_out")) return;
+  auto checks = read_held_out(file, "/held_out", bank.proxies.size() * 6);
+  for (std::size_t p = 0; p < bank.proxies.size(); ++p)
+    for (std::size_t f = 0; f < 6; ++f) bank.proxies[p].held_out[f] = std::move(checks[p * 6 + f]);
+}
 
 void check_lattice(const std::string& path, std::int32_t divisions, std::int32_t max_levels) {
   // DirectionMesh's limits (kernels/pan/direction_mesh.hpp)
@@ -325,6 +427,10 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
   write_dataset<double>(file, "/proxies/b_m", b, {b.size()}, "m");
   write_dataset<double>(file, "/proxies/c_m", c, {c.size()}, "m");
   write_direction_sets(file, "/directions", sets, h.lattice());
+  std::vector<const model::PanHeldOut*> checks;
+  for (const auto& p : bank.proxies)
+    for (const auto& check : p.held_out) checks.push_back(&check);
+  write_held_out(file, "/held_out", checks);
 
   // All coefficients in one compressed CSR, a row per vertex of every set in (proxy, field,
   // vertex) order: a bank is a handful of datasets however many proxies it holds (HDF5 objects
@@ -360,6 +466,14 @@ void write_pan_task(File& file, const std::string& group, const PanTaskResult& t
   write_dataset<std::uint32_t>(file, group + "/offsets", offsets, {offsets.size()}, "1", true);
   write_dataset<std::uint32_t>(file, group + "/index", index, {index.size()}, "1", true);
   write_dataset<float>(file, group + "/values", values, {index.size(), n_values}, "Pa m per unit acceleration", true);
+  const std::size_t n_points = task.held_out_points_m.size();
+  if (n_points > 0 && task.held_out_raw.size() % n_points != 0)
+    throw std::invalid_argument("PAN task: the held-out series are not one per point");
+  std::vector<double> points;
+  for (const auto& x : task.held_out_points_m) points.insert(points.end(), x.begin(), x.end());
+  write_dataset<double>(file, group + "/held_out_points_m", points, {n_points, 3}, "m", true);
+  write_dataset<float>(file, group + "/held_out_raw", task.held_out_raw,
+                       {n_points, n_points ? task.held_out_raw.size() / n_points : 0}, "Pa per unit acceleration", true);
 }
 
 PanTaskResult read_pan_task(const File& file, const std::string& group, const PanBankHeader& header) {
@@ -388,6 +502,11 @@ PanTaskResult read_pan_task(const File& file, const std::string& group, const Pa
     }
     t.fit.terms.push_back(std::move(terms_d));
   }
+  Dims np;
+  auto points = read_dataset<double>(file, group + "/held_out_points_m", {-1, 3}, "m", &np);
+  for (std::size_t k = 0; k < np[0]; ++k) t.held_out_points_m.push_back({points[3 * k], points[3 * k + 1], points[3 * k + 2]});
+  t.held_out_raw = read_dataset<float>(file, group + "/held_out_raw", {static_cast<long long>(np[0]), -1},
+                                       "Pa per unit acceleration");
   return t;
 }
 
@@ -427,71 +546,36 @@ PanBank read_pan_bank(const std::string& path) {
   auto delta = read_dataset<std::uint16_t>(file, "/coefficients/index_delta", {-1}, "1", &nnz);
   auto values = read_dataset<std::int16_t>(file, "/coefficients/values", {static_cast<long long>(nnz[0]), nv}, "1");
   auto scale = read_dataset<float>(file, "/coefficients/scale", {nr, nv}, "Pa m per unit acceleration");
+  const PackedCoefficients packed{std::move(offsets), std::move(delta), std::move(values), std::move(scale)};
   std::size_t row = 0;
-  const std::size_t dense_size = h.length * n_values;
   for (std::size_t p = 0; p < np; ++p) {
     PanProxy proxy;
     proxy.b_m = b[p];
     proxy.c_m = c[p];
     for (std::size_t f = 0; f < 6; ++f) {
-      model::PanField& out = proxy.fields[f];
-      out.directions = std::move(sets[p * 6 + f]);
-      if (out.directions.vertices.empty()) continue;
-      std::vector<Prediction> pred;
-      try {
-        pred = predictions(out.directions, layout_roots(h.divisions));
-      } catch (const std::invalid_argument& e) {
-        throw InputError(path + ": '/directions' set " + std::to_string(p * 6 + f) + " (proxy " + std::to_string(p) +
-                         ", field " + std::to_string(f + 1) + "): " + e.what());
-      }
-      std::vector<std::vector<double>> decoded(out.directions.vertices.size());
-      out.terms.resize(out.directions.vertices.size());
-      for (std::size_t v = 0; v < out.terms.size(); ++v, ++row) {
-        if (offsets[row] > offsets[row + 1] || offsets[row + 1] > delta.size())
-          throw InputError(path + ": '/coefficients/offsets' is not a valid partition of " + std::to_string(delta.size()) +
-                           " coefficients (row " + std::to_string(row) + ")");
-        auto& terms = out.terms[v];
-        std::vector<double>& dense = decoded[v];
-        dense.resize(dense_size);
-        predict(out.directions, pred[v], decoded, dense);
-        std::uint32_t j = 0;
-        for (std::uint32_t e = offsets[row]; e < offsets[row + 1]; ++e) {
-          j = e == offsets[row] ? delta[e] : j + delta[e];
-          if (j >= h.length || (e > offsets[row] && delta[e] == 0))
-            throw InputError(path + ": '/coefficients/index_delta' gives coefficient index " + std::to_string(j) +
-                             " outside [0, " + std::to_string(h.length) + ") or repeated");
-          if (pred[v].parent < 0) terms.index.push_back(j);  // a layout vertex: its stored coefficients as they are
-          for (std::size_t k = 0; k < n_values; ++k) {
-            const float x = static_cast<float>(values[e * n_values + k]) * scale[row * n_values + k];
-            dense[j * n_values + k] += static_cast<double>(values[e * n_values + k]) * static_cast<double>(scale[row * n_values + k]);
-            if (pred[v].parent < 0) terms.value.push_back(x);
-          }
-        }
-      }
-      // A made vertex holds every coefficient its parents' interpolation reaches; the evaluator
-      // gets those the fit's rule keeps (kernels/pan/fit.hpp) at kCodedEpsilon times epsilon: R p at
-      // some radius or at infinity (F + D_k, or F) reaching that fraction of its peak, or of a
-      // tenth of the field's.
-      std::vector<double> peak(out.terms.size(), 0.0);
-      for (std::size_t v = 0; v < out.terms.size(); ++v)
-        for (std::uint32_t n = 0; n < h.length; ++n) peak[v] = std::max(peak[v], rp_peak(&decoded[v][n * n_values], n_values));
-      const double field_peak = *std::max_element(peak.begin(), peak.end());
-      for (std::size_t v = 0; v < out.terms.size(); ++v) {
-        if (pred[v].parent < 0) continue;
-        const double small = kCodedEpsilon * h.epsilon * std::max(peak[v], 0.1 * field_peak);
-        auto& terms = out.terms[v];
-        for (std::uint32_t n = 0; n < h.length; ++n) {
-          const double* x = &decoded[v][n * n_values];
-          if (rp_peak(x, n_values) < small || rp_peak(x, n_values) == 0) continue;
-          terms.index.push_back(n);
-          for (std::size_t k = 0; k < n_values; ++k) terms.value.push_back(static_cast<float>(x[k]));
-        }
-      }
+      proxy.fields[f].directions = std::move(sets[p * 6 + f]);
+      unpack_field(h, packed, row, proxy.fields[f],
+                   path + ": '/directions' set " + std::to_string(p * 6 + f) + " (proxy " + std::to_string(p) + ", field " +
+                       std::to_string(f + 1) + ")");
     }
     bank.proxies.push_back(std::move(proxy));
   }
+  read_held_out(file, bank);
   bank.sweep = read_sweep_status(file);
   return bank;
+}
+
+model::PanField stored_field(const PanBankHeader& header, const model::PanField& field) {
+  PanBank one;
+  one.header = header;
+  one.proxies.resize(1);
+  one.proxies[0].fields[0] = field;
+  const PackedCoefficients packed = pack_coefficients(one);
+  model::PanField out;
+  out.directions = field.directions;
+  std::size_t row = 0;
+  unpack_field(header, packed, row, out, "stored_field");
+  return out;
 }
 
 }  // namespace clatter::io

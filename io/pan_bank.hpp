@@ -28,6 +28,10 @@ void write_pan_bank(const std::string& path, const model::PanBank& bank, const s
 // the form the evaluator reads (kernels/pan/field.hpp).
 model::PanBank read_pan_bank(const std::string& path);
 
+// A field as a reader of the bank gets it (quantized, coded and decoded as write_pan_bank and
+// read_pan_bank do): what a task checks against held-out points before the merge.
+model::PanField stored_field(const model::PanBankHeader& header, const model::PanField& field);
+
 // The payload of a task file under group `group` (the sweep engine owns the file). read_pan_task
 // checks every shape against the header (values per kept coefficient, length, the lattice).
 void write_pan_task(File& file, const std::string& group, const model::PanTaskResult& task, std::int32_t lattice,

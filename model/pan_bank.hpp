@@ -67,11 +67,21 @@ struct PanField {
   bool solved() const { return !terms.empty(); }
 };
 
+// A field's held-out check, made when the bank is merged (banks/pan/pan_job.hpp): the bank's
+// field, as a reader decodes it, against the same solve's raw field heard through the Kirchhoff
+// surface at points that are no stored direction or radius. Empty when the check was off.
+struct PanHeldOut {
+  std::vector<std::array<double, 3>> points_m;
+  std::vector<double> error;   // per point: relative L2 over time, bank against raw
+  std::vector<double> raw_l2;  // per point: the raw series' L2 [Pa per unit acceleration]
+};
+
 // One proxy ellipsoid (A, B, C) and its fields 1..6. Each direction's series are aligned by the
 // support distance (kernels/pan/fit.hpp support_delay_samples), which follows from A, B, C.
 struct PanProxy {
   double b_m = 0, c_m = 0;
   std::array<PanField, 6> fields;  // fields[field - 1]
+  std::array<PanHeldOut, 6> held_out;
 
   const PanField& field(int f) const { return fields.at(static_cast<std::size_t>(f - 1)); }
   bool solved(int f) const { return field(f).solved(); }
@@ -89,6 +99,10 @@ struct PanTaskResult {
   double b_m = 0, c_m = 0;
   int field = 0;
   PanField fit;
+  // The raw field at the held-out points, for the check at the merge (which codes the bank, so a
+  // bank merged again with another coding is checked as it is): [point][sample], the solve's samples.
+  std::vector<std::array<double, 3>> held_out_points_m;
+  std::vector<float> held_out_raw;
 };
 
 }  // namespace clatter::model

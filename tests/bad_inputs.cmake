@@ -33,6 +33,8 @@ clatter_error_test(bad_pan_divisions 0 "'fit.divisions' has 12;must be 2, 4, 8, 
 clatter_error_test(bad_pan_max_directions 0 "'fit.max_directions' has 20;fewer than the layout's 45 directions" pan --set fit.max_directions=20 -o out.h5)
 clatter_error_test(bad_pan_radius_inside 0 "'fit.radii_m' has 0.51: 0.5112 m from the centre, not beyond the Kirchhoff surface (radius 0.5195 m + 2 cells = 0.5325 m)"
                    pan "--set=fit.radii_m=[0.51, 1.0]" -o out.h5)
+clatter_error_test(bad_pan_held_out_radius_inside 0 "'check.held_out_radii_m' has 0.51: 0.51 m from the centre, not beyond the Kirchhoff surface"
+                   pan "--set=check.held_out_radii_m=[0.51, 1.0]" -o out.h5)
 clatter_error_test(bad_pan_radii_order 0 "'fit.radii_m' has 0.8 after 1.001: the radii must ascend" pan "--set=fit.radii_m=[1.0, 0.8]" -o out.h5)
 clatter_error_test(bad_pan_removed_key 0 "--set 'fit.terms=2': unknown key 'fit.terms'" pan "--set=fit.terms=2" -o out.h5)
 clatter_error_test(bad_pan_cfl_np2 2 "'time.dt_s' = 0.0001;CFL limit" pan --set grid.dx_m=0.01 --set time.dt_s=1e-4 -o out.h5)
@@ -171,7 +173,7 @@ foreach(case
     "wrong_version|wrong_version.h5: format 'clatter-pan-bank' version 1, this build reads version 4"
     "wrong_shape|wrong_shape.h5: dataset '/proxies/c_m': expected float64 [2] in 'm', found float64 [1]"
     "corrupt|corrupt.h5: dataset '/coefficients/values' cannot be read: corrupt or truncated file"
-    "index_out_of_range|index_out_of_range.h5: '/coefficients/index_delta' gives coefficient index 512 outside [0, 512)")
+    "index_out_of_range|index_out_of_range.h5: '/directions' set 0 (proxy 0, field 1): '/coefficients/index_delta' gives coefficient index 512 outside [0, 512)")
   string(REPLACE "|" ";" parts "${case}")
   list(POP_FRONT parts file)
   clatter_synth_error_test(bad_bank_${file} "${parts}" -i ${bad_in}/good.json -b ${bad_banks}/${file}.h5)

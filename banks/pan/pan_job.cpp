@@ -18,18 +18,42 @@ namespace clatter::jobs {
 
 namespace pan = kernels::pan;
 
+model::PanHeldOut check_held_out(const PanSpec& spec, const model::PanBankHeader& header, const model::PanProxy& built,
+                                 int field, const std::vector<std::array<double, 3>>& points, const std::vector<float>& raw) {
+  Stage stage("held-out check");
+  model::PanProxy stored;
+  stored.b_m = built.b_m;
+  stored.c_m = built.c_m;
+  stored.fields[static_cast<std::size_t>(field - 1)] = io::stored_field(header, built.field(field));
+  const std::size_t ns = static_cast<std::size_t>(spec.solve.n_samples);
+  model::PanHeldOut out;
+  for (std::size_t l = 0; l < points.size(); ++l) {
+    const float* series = raw.data() + l * ns;
+    double e = 0;
+    for (std::size_t k = 0; k < ns; ++k) e += double{series[k]} * series[k];
+    out.points_m.push_back(points[l]);
+    out.error.push_back(held_out_error(spec, header, stored, field, points[l], series));
+    out.raw_l2.push_back(std::sqrt(e));
+  }
+  return out;
+}
+
 TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s) {
   PanSpec one = spec;
   one.solve.fields = {task.field};
-  auto result = build_proxy(group, one, task.proxy, {}, progress_interval_s);
+  const auto points = held_out_points(spec, task.proxy);
+  auto result = build_proxy(group, one, task.proxy, points, progress_interval_s);
   if (mpi::rank(group) != 0) return {};
+  const auto header = pan_header(spec);
   model::PanTaskResult r;
   r.proxy = static_cast<std::uint32_t>(task.proxy);
   r.b_m = result.proxy.b_m;
   r.c_m = result.proxy.c_m;
   r.field = task.field;
+  r.held_out_points_m = points;
+  r.held_out_raw = std::move(result.extra_series.at(0));
   r.fit = std::move(result.proxy.fields[static_cast<std::size_t>(task.field - 1)]);
-  return [r = std::move(r), header = pan_header(spec)](io::File& file, const std::string& group_name) {
+  return [r = std::move(r), header](io::File& file, const std::string& group_name) {
     io::write_pan_task(file, group_name, r, header.lattice(), header.values());
   };
 }
@@ -63,7 +87,13 @@ model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results
                                    "and fit.direction_levels = {}: {}", file.path(), spec.divisions, spec.direction_levels,
                                    e.what()));
     }
-    bank.proxies[t.proxy].fields[static_cast<std::size_t>(t.field - 1)] = std::move(r.fit);
+    auto& proxy = bank.proxies[t.proxy];
+    proxy.fields[static_cast<std::size_t>(t.field - 1)] = std::move(r.fit);
+    if (r.held_out_points_m != held_out_points(spec, t.proxy) ||
+        r.held_out_raw.size() != r.held_out_points_m.size() * static_cast<std::size_t>(spec.solve.n_samples))
+      throw InputError(fmt::format("{}: its held-out points or series are not this config's (check.held_out_*)", file.path()));
+    proxy.held_out[static_cast<std::size_t>(t.field - 1)] =
+        check_held_out(spec, bank.header, proxy, t.field, r.held_out_points_m, r.held_out_raw);
   }
   return bank;
 }
@@ -107,6 +137,11 @@ double l2(const std::vector<double>& x) {
 // amplitude, 1 % of its energy (refine_directions).
 double floor_from_strongest(double strongest_l2) { return 0.1 * strongest_l2; }
 
+void add_strength(FarFieldStrength& s, double l2) {
+  s.strongest_l2 = std::max(s.strongest_l2, l2);
+  s.energy += l2 * l2;
+}
+
 }  // namespace
 
 ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
@@ -138,24 +173,25 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   }
   const bool store_3 = std::find(wanted.begin(), wanted.end(), 3) != wanted.end();
   out.extra_series.resize(wanted.size());
-  double field_3_l2 = 0;
+  FarFieldStrength field_3;
   // Rank 0, per field, while its surface is alive: the field's direction set (refined where the
   // far field asks for it), then every direction heard at its radii and at infinity, aligned by its
   // support distance (the whole steps in the fit, the fraction here).
   auto hear = [&](std::size_t fi, const fdtd::SurfaceField& surface) {
     const int f = s.fields[fi];
     if (yardstick && f == 3 && !store_3) {
-      field_3_l2 = layout_strength(spec, proxy, surface);
+      field_3 = layout_strength(spec, proxy, surface);
       return;
     }
     auto& field = out.proxy.fields[static_cast<std::size_t>(f - 1)];
     // A rotation field per unit angular acceleration moves the surface by up to A.
+    const double per_unit = f <= 3 ? 1.0 : spec.a_m;
     const DirectionRefinement set =
         spec.direction_tolerance > 0
             ? refine_directions(spec, proxy, surface, spec.direction_tolerance, spec.direction_levels, spec.max_directions,
-                                f <= 3 ? field_3_l2 : spec.a_m * field_3_l2)
-            : DirectionRefinement{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, 0};
-    if (f == 3) field_3_l2 = set.strongest_l2;
+                                {per_unit * field_3.strongest_l2, per_unit * per_unit * field_3.energy})
+            : DirectionRefinement{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, {}};
+    if (f == 3) field_3 = set.strength;
     std::vector<std::vector<float>> near(m, std::vector<float>(ns));
     std::vector<const float*> series;
     for (const auto& v : near) series.push_back(v.data());
@@ -191,15 +227,14 @@ std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, co
   return frame_far_field(spec, kernels::fdtd::far_field(surface, d, a.advance_s), a.whole_steps);
 }
 
-double layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface) {
-  double strongest = 0;
-  for (const auto& d : pan::direction_vertices(spec.divisions))
-    strongest = std::max(strongest, l2(aligned_far_field(spec, proxy, surface, d)));
-  return strongest;
+FarFieldStrength layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface) {
+  FarFieldStrength s;
+  for (const auto& d : pan::direction_vertices(spec.divisions)) add_strength(s, l2(aligned_far_field(spec, proxy, surface, d)));
+  return s;
 }
 
 double far_field_floor(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface) {
-  return floor_from_strongest(layout_strength(spec, proxy, surface));
+  return floor_from_strongest(layout_strength(spec, proxy, surface).strongest_l2);
 }
 
 double far_field_miss(const std::vector<double>& interpolated, const std::vector<double>& truth, double floor) {
@@ -212,8 +247,9 @@ double far_field_miss(const std::vector<double>& interpolated, const std::vector
 }
 
 DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
-                                      double tolerance, int max_levels, std::size_t max_vertices, double yardstick_l2) {
-  DirectionRefinement out{pan::uniform_mesh(spec.divisions, max_levels), 0, {}, 0};
+                                      double tolerance, int max_levels, std::size_t max_vertices,
+                                      const FarFieldStrength& yardstick) {
+  DirectionRefinement out{pan::uniform_mesh(spec.divisions, max_levels), 0, {}, {}};
   auto& mesh = out.mesh;
   auto at = [&](const pan::LatticePoint& p) -> const std::vector<double>& {
     auto it = out.far_fields.find(pan::lattice_key(p));
@@ -221,13 +257,11 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
       it = out.far_fields.emplace(pan::lattice_key(p), aligned_far_field(spec, proxy, surface, mesh.direction(p))).first;
     return it->second;
   };
-  double strongest = 0;  // layout_strength, from the layout's vertices (the unrefined mesh's)
-  for (const auto& v : mesh.vertices()) strongest = std::max(strongest, l2(at(v)));
-  out.strongest_l2 = strongest;
-  // A field below 1 % of the yardstick's energy is not radiated (issue 32): judged against the
-  // yardstick, its noise stays unrefined; a radiated one is judged against its own strongest.
-  if (strongest < 0.1 * yardstick_l2) strongest = yardstick_l2;
-  const double floor = floor_from_strongest(strongest);
+  for (const auto& v : mesh.vertices()) add_strength(out.strength, l2(at(v)));  // the unrefined mesh: the layout
+  // Not radiated: judged against the yardstick, its noise stays unrefined; a radiated field is
+  // judged against its own strongest.
+  const bool radiated = out.strength.energy >= kRadiatedEnergy * yardstick.energy;
+  const double floor = floor_from_strongest(radiated ? out.strength.strongest_l2 : yardstick.strongest_l2);
   std::vector<double> sum(spec.length);
   auto miss = [&](const pan::LatticePoint& p, const pan::DirectionWeights& w) {
     pan::blend(w, [&](std::size_t v) -> const std::vector<double>& { return at(mesh.vertices()[v]); }, sum);

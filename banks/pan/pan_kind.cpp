@@ -1,6 +1,7 @@
 #include "banks/pan/pan_kind.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <map>
 #include <memory>
@@ -50,6 +51,7 @@ class PanKind final : public BankKind {
         [spec, toml](const std::string& results_dir) { return merge_pan_results(*spec, results_dir, toml); },
         [toml](const std::string& out, const model::PanBank& bank, const std::string& command, int n_ranks) {
           io::write_pan_bank(out, bank, command, toml, n_ranks);
+          spdlog::info("pan: {}", held_out_summary(bank, false));
         });
     return sweep;
   }

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <random>
 
 #include "core/errors.hpp"
 #include "banks/medium_keys.hpp"
@@ -49,6 +51,13 @@ const io::Schema& pan_schema() {
                                                   "its size)", {0, 8}},
         {"fit.max_directions", std::int64_t{1000}, "stop refining a field at this many directions", {3, 100000}},
         {"fit.epsilon", 0.01, "keep wavelet coefficient j iff |p^_i^j| >= epsilon ||p^_i||_inf at some radius i or at infinity (the far field)", {0.0, 1.0}},
+        {"check.held_out_directions", std::int64_t{8}, "random directions per proxy (inside the octant, none a "
+                                                       "stored one) where each task checks its field as the bank stores "
+                                                       "it against the raw solve, at check.held_out_radii_m "
+                                                       "(clatter-bank info prints the result); 0: no check", {0, 1000}},
+        {"check.held_out_radii_m", io::RealList{}, "the radii of that check [m], outside the Kirchhoff surface; "
+                                                   "rounded to whole steps of c dt; empty: the geometric mean of each "
+                                                   "pair of neighbouring fit.radii_m", {0.0, 1e4, true}},
         {"solver.cut_cell_samples", std::int64_t{16}, "samples per cell edge for cut-cell fractions", {1, 256}},
         {"solver.scheme", std::string("me4"), "update away from the body: me4 (fourth order in space and time, "
                                               "25 points) or srl (the 7-point leapfrog, second order)",
@@ -82,6 +91,8 @@ PanParams parse_pan_params(const io::Config& config) {
   p.fit_direction_levels = static_cast<int>(config.integer("fit.direction_levels"));
   p.fit_max_directions = static_cast<int>(config.integer("fit.max_directions"));
   p.fit_epsilon = config.real("fit.epsilon");
+  p.check_held_out_directions = static_cast<int>(config.integer("check.held_out_directions"));
+  p.check_held_out_radii_m = config.reals("check.held_out_radii_m");
   p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
   p.solver_scheme = config.string("solver.scheme");
   p.solver_max_dispersion_error = config.real("solver.max_dispersion_error");
@@ -183,6 +194,15 @@ PanSpec make_pan_spec(const PanParams& in) {
   for (std::size_t i = 0; i < spec.radii_m.size(); ++i)  // every direction alike: the check along x
     if (auto why = surface_listener_problem(spec.solve, {spec.radii_m[i], 0.0, 0.0}))
       throw InputError(fmt::format("config: key 'fit.radii_m' has {}: {}", in.fit_radii_m[i], *why));
+  spec.held_out_directions = in.check_held_out_directions;
+  std::vector<double> held_out = in.check_held_out_radii_m;
+  if (held_out.empty())
+    for (std::size_t i = 0; i + 1 < spec.radii_m.size(); ++i) held_out.push_back(std::sqrt(spec.radii_m[i] * spec.radii_m[i + 1]));
+  for (double r : held_out) {
+    if (auto why = surface_listener_problem(spec.solve, {r, 0.0, 0.0}))
+      throw InputError(fmt::format("config: key 'check.held_out_radii_m' has {}: {}", r, *why));
+    spec.held_out_radii_m.push_back(std::round(r / (c_m_s * dt)) * c_m_s * dt);  // the raw series on PAN samples
+  }
   spec.lead_steps = static_cast<int>(std::ceil(spec.a_m / (c_m_s * dt)));
   // The retarded window every radius hears: from lead_steps before the pulse to the end of the
   // outermost radius' record (the tail); nearer radii's later samples are dropped.
@@ -216,10 +236,26 @@ std::vector<PanTask> pan_tasks(const PanSpec& spec) {
   return tasks;
 }
 
+std::vector<std::array<double, 3>> held_out_points(const PanSpec& spec, std::size_t proxy) {
+  // std::mt19937's sequence is fixed by the standard; the distributions are not, hence Box-Muller
+  // on its raw words: |three normals| is uniform over the octant's directions.
+  std::mt19937 rng(static_cast<std::uint32_t>(proxy) + 1);
+  auto uniform = [&] { return (static_cast<double>(rng()) + 0.5) / 4294967296.0; };
+  auto normal = [&] { return std::sqrt(-2 * std::log(uniform())) * std::cos(2 * std::numbers::pi * uniform()); };
+  std::vector<std::array<double, 3>> out;
+  for (int i = 0; i < spec.held_out_directions; ++i) {
+    std::array<double, 3> d{std::abs(normal()), std::abs(normal()), std::abs(normal())};
+    const double n = std::hypot(d[0], d[1], d[2]);
+    for (double r : spec.held_out_radii_m) out.push_back({r * d[0] / n, r * d[1] / n, r * d[2] / n});
+  }
+  return out;
+}
+
 double pan_series_per_task(const PanSpec& spec) {
   const double layout = pan::vertex_count(spec.divisions), radii = static_cast<double>(spec.radii_m.size());
-  if (spec.direction_tolerance == 0) return layout * (radii + 1);
-  return static_cast<double>(spec.max_directions) * (radii + 3);
+  const double held_out = static_cast<double>(spec.held_out_directions) * static_cast<double>(spec.held_out_radii_m.size());
+  if (spec.direction_tolerance == 0) return layout * (radii + 1) + held_out;
+  return static_cast<double>(spec.max_directions) * (radii + 3) + held_out;
 }
 
 }  // namespace clatter::jobs

@@ -37,6 +37,9 @@ struct PanSpec {
   std::size_t max_directions = 1000;
   double epsilon = 0.01;
   std::uint32_t length = 0;            // wavelet length T
+  // Each task's held-out check (held_out_points): directions per proxy x radii, whole steps of c dt.
+  int held_out_directions = 8;
+  std::vector<double> held_out_radii_m;
 };
 
 // The parameters of a PAN bank as the user gives them: one field per key of pan_schema(), named
@@ -56,6 +59,8 @@ struct PanParams {
   int fit_direction_levels = 0;
   int fit_max_directions = 0;
   double fit_epsilon = 0;
+  int check_held_out_directions = 0;
+  std::vector<double> check_held_out_radii_m;
   int solver_cut_cell_samples = 0;
   std::string solver_scheme = "me4";
   double solver_max_dispersion_error = 0.02;
@@ -77,9 +82,15 @@ struct PanTask {
   std::string name;
 };
 std::vector<PanTask> pan_tasks(const PanSpec& spec);
+// The points of proxy `proxy`'s held-out check, the same for its every field (so their energies
+// compare): spec.held_out_directions directions uniform over the octant, with probability one
+// inside the triangles of every direction set, from a generator seeded by the proxy's index (the
+// same points on every machine), times each of spec.held_out_radii_m.
+std::vector<std::array<double, 3>> held_out_points(const PanSpec& spec, std::size_t proxy);
 // Series a task hears through the Kirchhoff surface, at most: directions x (radii + the far field),
 // and with refinement the far fields at split points that did not become directions (about two per
-// direction, measured: docs/pan.md). With refinement the direction count is max_directions, a bound.
+// direction, measured: docs/pan.md), and the held-out check's points. With refinement the direction
+// count is max_directions, a bound.
 double pan_series_per_task(const PanSpec& spec);
 
 }  // namespace clatter::jobs

@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "io/h5.hpp"
@@ -34,6 +35,79 @@ model::PanBank read_checked(const std::string& path) {
 }
 
 }  // namespace
+
+std::string held_out_summary(const model::PanBank& bank, bool table) {
+  struct Row {
+    std::size_t proxy;
+    int field;
+    double share, median, worst, floored;
+    std::size_t above, points;
+  };
+  std::vector<Row> rows;
+  std::size_t checked = 0;
+  for (std::size_t p = 0; p < bank.proxies.size(); ++p) {
+    const auto& proxy = bank.proxies[p];
+    std::array<double, 6> energy{};
+    for (std::size_t f = 0; f < 6; ++f) {
+      for (double l2 : proxy.held_out[f].raw_l2) energy[f] += l2 * l2;
+      if (f >= 3) energy[f] /= bank.header.a_m * bank.header.a_m;
+    }
+    const double strongest = *std::max_element(energy.begin(), energy.end());
+    for (std::size_t f = 0; f < 6; ++f) {
+      const auto& c = proxy.held_out[f];
+      if (c.error.empty()) continue;
+      ++checked;
+      std::map<long, double> radius_peak;  // by radius in micrometres: the field's largest raw L2 there
+      auto radius_key = [](const std::array<double, 3>& x) { return std::lround(1e6 * std::hypot(x[0], x[1], x[2])); };
+      for (std::size_t l = 0; l < c.error.size(); ++l)
+        radius_peak[radius_key(c.points_m[l])] = std::max(radius_peak[radius_key(c.points_m[l])], c.raw_l2[l]);
+      Row r{p, static_cast<int>(f + 1), strongest > 0 ? energy[f] / strongest : 0.0, 0, 0, 0, 0, c.error.size()};
+      std::vector<double> sorted = c.error;
+      std::sort(sorted.begin(), sorted.end());
+      r.median = sorted[sorted.size() / 2];
+      r.worst = sorted.back();
+      for (std::size_t l = 0; l < c.error.size(); ++l) {
+        r.above += c.error[l] > 0.05;
+        r.floored = std::max(r.floored, c.error[l] * c.raw_l2[l] / std::max(c.raw_l2[l], 0.1 * radius_peak[radius_key(c.points_m[l])]));
+      }
+      rows.push_back(r);
+    }
+  }
+  if (checked == 0) return "no held-out checks (check.held_out_directions = 0, or a bank merged before them)";
+  auto name = [&](const Row& r) {
+    return fmt::format("({:.4g}, {:.4g}) field {}", bank.proxies[r.proxy].b_m, bank.proxies[r.proxy].c_m, r.field);
+  };
+  std::string out;
+  if (table) {
+    out += fmt::format("  {:<26} {:>7} {:>8} {:>8} {:>9} {:>9}\n", "proxy (B, C) [m], field", "energy", "median",
+                       "worst", "floored", "> 5 %");
+    for (const auto& r : rows) {
+      if (r.share < kExcludedEnergy)
+        out += fmt::format("  {:<26} {:>7.4f}   not radiated: excluded\n", name(r), r.share);
+      else
+        out += fmt::format("  {:<26} {:>7.4f} {:>7.2f}% {:>7.2f}% {:>8.2f}% {:>5}/{}\n", name(r), r.share, 100 * r.median,
+                           100 * r.worst, 100 * r.floored, r.above, r.points);
+    }
+  }
+  const Row* worst = nullptr;
+  const Row* worst_floored = nullptr;
+  std::size_t excluded = 0;
+  for (const auto& r : rows) {
+    if (r.share < kExcludedEnergy) {
+      ++excluded;
+      continue;
+    }
+    if (!worst || r.worst > worst->worst) worst = &r;
+    if (!worst_floored || r.floored > worst_floored->floored) worst_floored = &r;
+  }
+  const std::string indent = table ? "  " : "";
+  if (!worst) return out + indent + fmt::format("held out: {} fields checked, none radiated", checked);
+  out += indent + fmt::format("held out: worst {:.2f} % ({}), floored {:.2f} % ({}); {} of {} fields not radiated (below {:g} % "
+                     "of their proxy's strongest energy), excluded",
+                     100 * worst->worst, name(*worst), 100 * worst_floored->floored, name(*worst_floored), excluded, checked,
+                     100 * kExcludedEnergy);
+  return out;
+}
 
 std::string pan_bank_info(const std::string& path) {
   const model::PanBank bank = read_checked(path);
@@ -82,6 +156,12 @@ std::string pan_bank_info(const std::string& path) {
                      sw.missing.size());
   for (const auto& f : sw.failed) out += "    failed:  " + f + "\n";
   for (const auto& m : sw.missing) out += "    missing: " + m + "\n";
+  std::size_t points = 0;
+  for (const auto& p : bank.proxies)
+    for (const auto& c : p.held_out) points = std::max(points, c.error.size());
+  out += fmt::format("  held out:    {} points per field (directions x radii), each field as stored against its raw "
+                     "solve there (relative L2; docs/pan.md, \"The held-out check\")\n", points);
+  out += held_out_summary(bank, true) + "\n";
   return out;
 }
 

@@ -4,11 +4,22 @@
 #include <string>
 
 #include "kernels/pan/directions.hpp"
+#include "model/pan_bank.hpp"
 
 namespace clatter::jobs {
 
-// A summary of the bank: proxies, fields, epsilon, sizes, provenance. Throws InputError.
+// A summary of the bank: proxies, fields, epsilon, sizes, provenance, the held-out checks. Throws InputError.
 std::string pan_bank_info(const std::string& path);
+
+// The bank's held-out checks (model::PanHeldOut) as issue 32's acceptance reads them: per (proxy,
+// field) the share of the proxy's strongest field's energy at the points (a rotation field per unit
+// surface acceleration, over A^2); below kExcludedEnergy a field is listed as not radiated and
+// excluded; the error's median, worst and points above 5 %, and the worst "floored" (against the
+// larger of the point's raw L2 and a tenth of the field's largest at that radius: a miss where the
+// field hardly radiates told from one where it does). `table`: a row per (proxy, field); else
+// one line, the worst radiated field.
+inline constexpr double kExcludedEnergy = 0.01;
+std::string held_out_summary(const model::PanBank& bank, bool table);
 
 struct ProbeRequest {
   std::string bank_path;

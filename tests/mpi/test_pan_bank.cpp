@@ -132,6 +132,47 @@ TEST(PanBank, HeldOutRadiiAndDirectionWithin5PercentAtEpsilon001) {
   for (std::size_t f = 0; f < errors.size(); ++f) EXPECT_LT(errors[f], 0.05) << "field " << f + 1;
 }
 
+TEST(PanBank, TheMergeChecksEachFieldAsTheBankStoresIt) {
+  // The held-out check of each field at the merge (merge_pan_results; clatter-bank info prints it) reads it
+  // as io::stored_field codes it in memory. The same points through a bank file, read back as the
+  // synthesizer reads it, must give the same errors; the points are the same on every call, differ
+  // between proxies, lie in the octant at the held-out radii, between the stored ones.
+  io::Config config = demo_config();
+  config.set("proxies.list_m=[[0.35, 0.2], [0.2, 0.1]]");
+  config.set("solve.fields=[1, 5]");
+  const auto spec = jobs::make_pan_spec(config);
+  const auto points = jobs::held_out_points(spec, 0);
+  ASSERT_EQ(points.size(), 8 * (spec.radii_m.size() - 1));
+  EXPECT_EQ(points, jobs::held_out_points(spec, 0));
+  EXPECT_NE(points, jobs::held_out_points(spec, 1));
+  for (std::size_t l = 0; l < points.size(); ++l) {
+    const auto& x = points[l];
+    const std::size_t i = l % spec.held_out_radii_m.size();
+    EXPECT_NEAR(std::hypot(x[0], x[1], x[2]), spec.held_out_radii_m[i], 1e-12);
+    EXPECT_GT(spec.held_out_radii_m[i], spec.radii_m[i]);
+    EXPECT_LT(spec.held_out_radii_m[i], spec.radii_m[i + 1]);
+    EXPECT_TRUE(x[0] > 0 && x[1] > 0 && x[2] > 0);
+  }
+  auto result = jobs::build_proxy(MPI_COMM_WORLD, spec, 0, points, 0.0);
+  if (!root()) return;
+  const auto header = jobs::pan_header(spec);
+  const auto from_file = through_file(spec, result.proxy, "pan_held_out_check.h5");
+  const std::size_t ns = static_cast<std::size_t>(spec.solve.n_samples);
+  for (std::size_t f = 0; f < spec.solve.fields.size(); ++f) {
+    const int field = spec.solve.fields[f];
+    const auto check = jobs::check_held_out(spec, header, result.proxy, field, points, result.extra_series[f]);
+    ASSERT_EQ(check.error.size(), points.size());
+    double worst = 0;
+    for (std::size_t l = 0; l < points.size(); ++l) {
+      const double via_file =
+          jobs::held_out_error(spec, header, from_file, field, points[l], result.extra_series[f].data() + l * ns);
+      EXPECT_NEAR(check.error[l], via_file, 1e-9) << "field " << field << ", point " << l;
+      worst = std::max(worst, check.error[l]);
+    }
+    std::printf("field %d: held-out worst %.2f %% over %zu points\n", field, 100 * worst, points.size());
+  }
+}
+
 TEST(PanBank, LinearDirectionInterpolationNeedsFinerDirections) {
   // Uniform layouts, no refinement: the paper's linear interpolation holds the translations within
   // 5 % at 45 directions; the rotations (quadrupole-like lobes) need 153 (docs/pan.md). Guards for both.
@@ -222,6 +263,14 @@ TEST(PanDirections, RefinementHoldsTheFarFieldBetweenItsDirectionsAtTheDemoResol
   auto hook = [&](std::size_t, const kernels::fdtd::SurfaceField& surface) {
     const auto refined = jobs::refine_directions(spec, 0, surface, 0.02, 3, 5000);
     directions = refined.mesh.size();
+    // The radiated rule (jobs::kRadiatedEnergy): against a yardstick with 100 times its energy
+    // (1 %) the field is radiated and refines as against none; with 1000 times (0.1 %) it is not,
+    // and is judged against the yardstick's strongest direction, ten times its own: no split.
+    const auto& own = refined.strength;
+    EXPECT_GT(refined.splits, 0);
+    EXPECT_EQ(jobs::refine_directions(spec, 0, surface, 0.02, 3, 5000, {10 * own.strongest_l2, 100 * own.energy}).splits,
+              refined.splits);
+    EXPECT_EQ(jobs::refine_directions(spec, 0, surface, 0.02, 3, 5000, {100 * own.strongest_l2, 1000 * own.energy}).splits, 0);
     const kernels::pan::DirectionMesh uniform(spec.divisions, 0);
     const double floor = jobs::far_field_floor(spec, 0, surface);
     std::mt19937 rng(5);
