@@ -64,11 +64,13 @@ int study(mpi::Session& session, int argc, char** argv) {
     }
     auto report = [&](const std::string& name, const pan::DirectionMesh& mesh, int splits, std::size_t far_fields) {
       std::vector<std::vector<double>> at(mesh.size());
-      for (std::size_t v = 0; v < mesh.size(); ++v) at[v] = jobs::aligned_far_field(spec, 0, surface, mesh.direction(v));
+      // As the bank stores and interpolates them: over the symmetry zeros, then times them.
+      for (std::size_t v = 0; v < mesh.size(); ++v) at[v] = jobs::stored_far_field(spec, 0, surface, mesh.direction(v));
       std::vector<double> misses;
       std::vector<double> sum(spec.length);
       for (std::size_t i = 0; i < points.size(); ++i) {
         pan::blend(mesh.locate(points[i]), [&](std::size_t v) -> const std::vector<double>& { return at[v]; }, sum);
+        for (double& x : sum) x *= pan::symmetry_zeros(surface.field, points[i]);
         misses.push_back(jobs::far_field_miss(sum, truth[i], floor));
       }
       int above = 0;

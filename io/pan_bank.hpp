@@ -14,8 +14,9 @@
 namespace clatter::io {
 
 inline constexpr const char* kPanBankFormat = "clatter-pan-bank";
-// 3: the radial model replaced the series (8); 4: a direction set per (proxy, field), adaptive
-inline constexpr int kPanBankFormatVersion = 4;
+// 3: the radial model replaced the series (8); 4: a direction set per (proxy, field), adaptive;
+// 5: the values are the field over its symmetry zeros (kernels/pan/directions.hpp symmetry_zeros)
+inline constexpr int kPanBankFormatVersion = 5;
 
 // Writes atomically (temporary + rename); coefficients quantized to 16 bits per (direction, value)
 // scale, a refined direction coded as its difference from its parent's interpolation, indices

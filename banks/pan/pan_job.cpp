@@ -196,16 +196,19 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
     std::vector<const float*> series;
     for (const auto& v : near) series.push_back(v.data());
     for (std::size_t v = 0; v < set.mesh.size(); ++v) {
-      const auto d = set.mesh.direction(v);
+      // Stored over the field's symmetry zeros (kernels/pan/directions.hpp), heard off the planes.
+      const auto d = pan::off_planes(f, set.mesh.direction(v));
+      const double zeros = pan::symmetry_zeros(f, d);
       const Alignment a = alignment(spec, proxy, d);
       for (std::size_t i = 0; i < m; ++i) {
         const double r = spec.radii_m[i];
         const auto p = fdtd::pressure_at(surface, {r * d[0], r * d[1], r * d[2]}, a.advance_s);
-        for (std::size_t k = 0; k < ns; ++k) near[i][k] = static_cast<float>(p.value[k]);
+        for (std::size_t k = 0; k < ns; ++k) near[i][k] = static_cast<float>(p.value[k] / zeros);
       }
       const auto heard = set.far_fields.find(pan::lattice_key(set.mesh.vertices()[v]));
       field.terms.push_back(fitter.fit(series, ns, spec.epsilon, a.whole_steps,
-                                       heard != set.far_fields.end() ? heard->second : aligned_far_field(spec, proxy, surface, d)));
+                                       heard != set.far_fields.end() ? heard->second
+                                                                     : stored_far_field(spec, proxy, surface, set.mesh.direction(v))));
     }
     field.directions = set.mesh.stored();
     std::vector<float> extra(extra_listeners_m.size() * ns);
@@ -225,6 +228,15 @@ std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, co
                                       const std::array<double, 3>& d) {
   const Alignment a = alignment(spec, proxy, d);
   return frame_far_field(spec, kernels::fdtd::far_field(surface, d, a.advance_s), a.whole_steps);
+}
+
+std::vector<double> stored_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
+                                     const std::array<double, 3>& d) {
+  const auto heard = pan::off_planes(surface.field, d);
+  auto q = aligned_far_field(spec, proxy, surface, heard);
+  const double zeros = pan::symmetry_zeros(surface.field, heard);
+  for (double& x : q) x /= zeros;
+  return q;
 }
 
 FarFieldStrength layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface) {
@@ -254,14 +266,20 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
   auto at = [&](const pan::LatticePoint& p) -> const std::vector<double>& {
     auto it = out.far_fields.find(pan::lattice_key(p));
     if (it == out.far_fields.end())
-      it = out.far_fields.emplace(pan::lattice_key(p), aligned_far_field(spec, proxy, surface, mesh.direction(p))).first;
+      it = out.far_fields.emplace(pan::lattice_key(p), stored_far_field(spec, proxy, surface, mesh.direction(p))).first;
     return it->second;
   };
-  for (const auto& v : mesh.vertices()) add_strength(out.strength, l2(at(v)));  // the unrefined mesh: the layout
-  // Not radiated: judged against the yardstick, its noise stays unrefined; a radiated field is
-  // judged against its own strongest.
-  const bool radiated = out.strength.energy >= kRadiatedEnergy * yardstick.energy;
-  const double floor = floor_from_strongest(radiated ? out.strength.strongest_l2 : yardstick.strongest_l2);
+  // The unrefined mesh is the layout: the field's strength there (of p = q x its symmetry zeros),
+  // and the strongest q, whose tenth is the floor.
+  double strongest_q = 0;
+  for (const auto& v : mesh.vertices()) {
+    const double q = l2(at(v));
+    strongest_q = std::max(strongest_q, q);
+    add_strength(out.strength, q * pan::symmetry_zeros(surface.field, mesh.direction(v)));
+  }
+  // Not radiated: numerical noise, left at the layout.
+  if (out.strength.energy < kRadiatedEnergy * yardstick.energy) return out;
+  const double floor = floor_from_strongest(strongest_q);
   std::vector<double> sum(spec.length);
   auto miss = [&](const pan::LatticePoint& p, const pan::DirectionWeights& w) {
     pan::blend(w, [&](std::size_t v) -> const std::vector<double>& { return at(mesh.vertices()[v]); }, sum);

@@ -36,6 +36,11 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
 std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                       const std::array<double, 3>& d);
 
+// What a bank stores for direction d: the aligned far field over the field's symmetry zeros (q,
+// kernels/pan/directions.hpp symmetry_zeros), heard off the planes where they vanish.
+std::vector<double> stored_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
+                                     const std::array<double, 3>& d);
+
 // A field's strength over the layout's directions: its strongest far field (L2 over time) and
 // their energy (the sum of squares, the layout's directions spanning about equal solid angles).
 struct FarFieldStrength {
@@ -46,12 +51,12 @@ FarFieldStrength layout_strength(const PanSpec& spec, std::size_t proxy, const k
 
 // A field's adaptive direction set (the bank's, with fit.direction_tolerance): the layout of
 // spec.divisions split where quadratic interpolation of the far field misses it at a split point
-// by more than `tolerance` (relative L2). Directions weaker than a tenth of the strongest far field
-// (amplitude; 1 % of its energy) are judged against that tenth: the strongest of the layout's
-// vertices. A field that does not radiate, below kRadiatedEnergy of `yardstick`'s energy (the
-// proxy's strongest field known from another solve; build_proxy: field 3's, a rotation field's
-// taken per unit surface acceleration), is judged against the yardstick's strongest instead: its
-// noise stays at the layout.
+// by more than `tolerance` (relative L2), the far field as stored (stored_far_field: over the
+// symmetry zeros). Directions weaker than a tenth of the strongest stored far field among the
+// layout's vertices (amplitude; 1 % of its energy) are judged against that tenth. A field that does
+// not radiate, below kRadiatedEnergy of `yardstick`'s energy (the proxy's strongest field known from
+// another solve; build_proxy: field 3's, a rotation field's taken per unit surface acceleration),
+// is numerical noise and stays at the layout.
 struct DirectionRefinement {
   kernels::pan::DirectionMesh mesh;
   int splits = 0;

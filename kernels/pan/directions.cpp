@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "kernels/fdtd/geometry.hpp"
+
 namespace clatter::kernels::pan {
 namespace {
 int vertex_index(int divisions, int a, int b) {
@@ -85,6 +87,23 @@ DirectionWeights locate_direction(const std::array<double, 3>& d, int divisions,
       w.weight[3 + i] = 4 * l[i] * l[j];
     }
   return w;
+}
+
+double symmetry_zeros(int field, const std::array<double, 3>& d) {
+  double m = 1;
+  for (int a = 0; a < 3; ++a)
+    if (fdtd::field_parity(field, a) < 0) m *= std::abs(d[static_cast<std::size_t>(a)]);
+  return m;
+}
+
+std::array<double, 3> off_planes(int field, const std::array<double, 3>& d) {
+  std::array<double, 3> out = d;
+  for (int a = 0; a < 3; ++a)
+    if (fdtd::field_parity(field, a) < 0 && std::abs(out[static_cast<std::size_t>(a)]) < kOffPlane)
+      out[static_cast<std::size_t>(a)] = kOffPlane;
+  const double n = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
+  for (double& x : out) x /= n;
+  return out;
 }
 
 }  // namespace clatter::kernels::pan

@@ -36,4 +36,17 @@ struct DirectionWeights {
 DirectionWeights locate_direction(const std::array<double, 3>& d, int divisions = kPaperDivisions,
                                   Interpolation interpolation = Interpolation::quadratic);
 
+// A rigid-body field is odd across the mirror planes of eqs. (16)-(21) where its parity is -1 (a
+// translation along x across x = 0; a rotation about x across y = 0 and z = 0), so in the positive
+// octant it vanishes on those planes like the product of the direction's components across them.
+// Relative to the field, interpolation between directions is worst right there (issue 32: every
+// held-out miss above 5 % of the (0.2625, 0.12) proxy lay 5 degrees off such a plane), so the
+// bank stores q = p / symmetry_zeros(field, d), which is even across each plane and does not
+// vanish on it, and the evaluator multiplies back. d: a unit direction in the closed octant.
+double symmetry_zeros(int field, const std::array<double, 3>& d);
+// Where symmetry_zeros vanishes q is its limit; a direction on such a plane is heard kOffPlane
+// off it instead (q is even across the plane, so the offset costs O(kOffPlane^2), 1e-4 relative).
+inline constexpr double kOffPlane = 0.01;
+std::array<double, 3> off_planes(int field, const std::array<double, 3>& d);
+
 }  // namespace clatter::kernels::pan

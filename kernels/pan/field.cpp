@@ -51,7 +51,9 @@ Series evaluate_sum(const model::PanBankHeader& bank, const model::PanProxy& pro
     double sign = 1.0;  // eqs. (16)-(21)
     for (int a = 0; a < 3; ++a)
       if (x_m[a] < 0) sign *= fdtd::field_parity(field, a);
-    const double scale = weights[i] * sign * (field <= 3 ? beta : beta * beta) * gain;
+    // The bank stores the field over its symmetry zeros (directions.hpp symmetry_zeros).
+    const double zeros = symmetry_zeros(field, {y[0] / r, y[1] / r, y[2] / r});
+    const double scale = weights[i] * sign * zeros * (field <= 3 ? beta : beta * beta) * gain;
     for (std::size_t v = 0; v < static_cast<std::size_t>(w.count); ++v)
       if (w.weight[v] != 0)
         accumulate(f.terms.at(static_cast<std::size_t>(w.vertex[v])), bank.values(), radial, scale * w.weight[v], c);
