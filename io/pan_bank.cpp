@@ -455,6 +455,9 @@ void write_pan_task(File& file, const std::string& group, const PanTaskResult& t
   write_attribute<double>(file, group, "b_m", task.b_m);
   write_attribute<double>(file, group, "c_m", task.c_m);
   write_attribute<std::int32_t>(file, group, "field", task.field);
+  // A results folder outlives builds: what its values mean is the bank format's (version 5 divided
+  // the symmetry zeros out), so a task fitted for another version is refused, not merged.
+  write_attribute<std::int32_t>(file, group, "bank_format_version", kPanBankFormatVersion);
   write_direction_sets(file, group + "/directions", {&task.fit.directions}, lattice);
   std::vector<std::uint32_t> offsets{0}, index;
   std::vector<float> values;
@@ -482,6 +485,12 @@ PanTaskResult read_pan_task(const File& file, const std::string& group, const Pa
   t.b_m = read_attribute<double>(file, group, "b_m");
   t.c_m = read_attribute<double>(file, group, "c_m");
   t.field = read_attribute<std::int32_t>(file, group, "field");
+  const auto version = has_attribute(file, group, "bank_format_version")
+                           ? read_attribute<std::int32_t>(file, group, "bank_format_version") : 4;
+  if (version != kPanBankFormatVersion)
+    throw InputError(file.path() + ": fitted for PAN bank format version " + std::to_string(version) +
+                     ", this build writes version " + std::to_string(kPanBankFormatVersion) +
+                     ": rerun its task (delete the file, or start the sweep without --resume)");
   t.fit.directions = read_direction_sets(file, group + "/directions", 1, header.divisions, header.lattice()).at(0);
   const std::size_t n_directions = t.fit.directions.vertices.size(), n_values = header.values();
   if (n_directions == 0) throw InputError(file.path() + ": '" + group + "/directions' holds no direction");
