@@ -189,7 +189,7 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
     const DirectionRefinement set =
         spec.direction_tolerance > 0
             ? refine_directions(spec, proxy, surface, spec.direction_tolerance, spec.direction_levels, spec.max_directions,
-                                {per_unit * field_3.strongest_l2, per_unit * per_unit * field_3.energy})
+                                per_unit * per_unit * field_3.energy)
             : DirectionRefinement{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, {}};
     if (f == 3) field_3 = set.strength;
     std::vector<std::vector<float>> near(m, std::vector<float>(ns));
@@ -260,7 +260,7 @@ double far_field_miss(const std::vector<double>& interpolated, const std::vector
 
 DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                       double tolerance, int max_levels, std::size_t max_vertices,
-                                      const FarFieldStrength& yardstick) {
+                                      double yardstick_energy) {
   DirectionRefinement out{pan::uniform_mesh(spec.divisions, max_levels), 0, {}, {}};
   auto& mesh = out.mesh;
   auto at = [&](const pan::LatticePoint& p) -> const std::vector<double>& {
@@ -278,7 +278,7 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
     add_strength(out.strength, q * pan::symmetry_zeros(surface.field, mesh.direction(v)));
   }
   // Not radiated: numerical noise, left at the layout.
-  if (out.strength.energy < kRadiatedEnergy * yardstick.energy) return out;
+  if (out.strength.energy < kRadiatedEnergy * yardstick_energy) return out;
   const double floor = floor_from_strongest(strongest_q);
   std::vector<double> sum(spec.length);
   auto miss = [&](const pan::LatticePoint& p, const pan::DirectionWeights& w) {

@@ -54,7 +54,7 @@ FarFieldStrength layout_strength(const PanSpec& spec, std::size_t proxy, const k
 // by more than `tolerance` (relative L2), the far field as stored (stored_far_field: over the
 // symmetry zeros). Directions weaker than a tenth of the strongest stored far field among the
 // layout's vertices (amplitude; 1 % of its energy) are judged against that tenth. A field that does
-// not radiate, below kRadiatedEnergy of `yardstick`'s energy (the proxy's strongest field known from
+// not radiate, below kRadiatedEnergy of `yardstick_energy` (the proxy's strongest field's, known from
 // another solve; build_proxy: field 3's, a rotation field's taken per unit surface acceleration),
 // is numerical noise and stays at the layout.
 struct DirectionRefinement {
@@ -71,7 +71,7 @@ struct DirectionRefinement {
 inline constexpr double kRadiatedEnergy = 0.0025;
 DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                       double tolerance, int max_levels, std::size_t max_vertices,
-                                      const FarFieldStrength& yardstick = {});
+                                      double yardstick_energy = 0);
 // The miss measure of refine_directions: |interpolated - truth| / max(|truth|, floor), L2 over time.
 double far_field_miss(const std::vector<double>& interpolated, const std::vector<double>& truth, double floor);
 // A tenth of the strongest far field (L2) among the layout's directions, 1 % of its energy.
