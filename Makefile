@@ -8,7 +8,7 @@
 #                             pre-fractured), the intact plate's own modal model (clatter-bank object),
 #                             the plate rendered with every source (out/demo/plate.wav), and 003's
 #                             ceramic tile broken by its stress (docs/fracture.md; out/demo/tile.wav)
-#   make test                 every test (ctest) but those labelled extended, in build/$(PRESET), then `make fuzz`
+#   make test                 every test (ctest) but those labelled extended, in build/$(PRESET), then `make fuzz` at 10 s each
 #   make test-extended        the extended tests (minutes each: the ground sound's elevation and eta sweep)
 #   make fuzz                 the libFuzzer harnesses of the readers, 30 s each (preset fuzz, clang-14)
 #   make bench                Google Benchmark suite, JSON in out/bench/
@@ -25,6 +25,8 @@ MAKEFLAGS += --no-print-directory
 PYTHON = $(shell sed -n 's/^CLATTER_PYTHON:FILEPATH=//p' $(BUILD)/CMakeCache.txt)
 
 FUZZ_BUILD := build/fuzz
+# Seconds each harness fuzzes after its corpus: 30 for `make fuzz`, 10 within `make test`.
+FUZZ_SECONDS ?= 30
 # make demo's plate bank: configs/modal-plate.toml (one entry like the typical piece; the tests'
 # fixture) plus two entries like the scene's thinnest (a:b:c = 0.073:0.608:1) and longest
 # (0.078:0.321:1) pieces, the patch down to a/c = 0.05, and every mode to 20 kHz for pieces up to
@@ -70,7 +72,7 @@ demo: build
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 300 -LE extended
-	@$(MAKE) fuzz
+	@$(MAKE) fuzz FUZZ_SECONDS=10
 
 test-extended: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) -L extended
@@ -81,7 +83,7 @@ $(FUZZ_BUILD)/CMakeCache.txt: | deps
 # Only the harnesses and what they link (target fuzzers); each fuzzes its corpus for 30 s.
 fuzz: deps $(FUZZ_BUILD)/CMakeCache.txt
 	cmake --build $(FUZZ_BUILD) --target fuzzers -j$(JOBS)
-	ctest --test-dir $(FUZZ_BUILD) -L fuzz --output-on-failure -j$(JOBS)
+	CLATTER_FUZZ_SECONDS=$(FUZZ_SECONDS) ctest --test-dir $(FUZZ_BUILD) -L fuzz --output-on-failure -j$(JOBS)
 
 bench: build
 	mkdir -p out/bench
