@@ -45,7 +45,7 @@ int study(mpi::Session& session, int argc, char** argv) {
   config.set(list + "]");
   const auto spec = jobs::make_pan_spec(config);
   jobs::SolveSpec s = spec.solve;
-  s.problem.body = {spec.a_m, spec.proxies_bc_m[0][0], spec.proxies_bc_m[0][1]};
+  s.problem.body = {spec.a_m, spec.bodies[0].b_m, spec.bodies[0].c_m};
   if (session.is_root()) std::printf("field,set,directions,splits,far_fields,median_pct,p90_pct,worst_pct,above_5pct\n");
   auto hook = [&](std::size_t fi, const kernels::fdtd::SurfaceField& surface) {
     const auto refined = jobs::refine_directions(spec, 0, surface, tolerance, levels, 5000);

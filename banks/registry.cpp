@@ -15,8 +15,10 @@ namespace clatter::jobs {
 namespace {
 
 std::string known(const char* (BankKind::*field)() const) {
-  std::string list;
-  for (const BankKind* k : bank_kinds()) list += (list.empty() ? "" : ", ") + std::string((k->*field)());
+  std::string list;  // each once: pan and pan-object write the same format
+  for (const BankKind* k : bank_kinds())
+    if (const std::string item = (k->*field)(); (", " + list + ", ").find(", " + item + ", ") == std::string::npos)
+      list += (list.empty() ? "" : ", ") + item;
   return list;
 }
 
@@ -24,7 +26,8 @@ std::string known(const char* (BankKind::*field)() const) {
 
 std::span<const BankKind* const> bank_kinds() {
   // One line per kind.
-  static const std::array<const BankKind*, 4> kinds = {&pan_kind(), &modal_kind(), &object_kind(), &ground_kind()};
+  static const std::array<const BankKind*, 5> kinds = {&pan_kind(), &pan_object_kind(), &modal_kind(), &object_kind(),
+                                                       &ground_kind()};
   return kinds;
 }
 

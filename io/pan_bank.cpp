@@ -376,6 +376,79 @@ void read_held_out(const File& file, PanBank& bank) {
     for (std::size_t f = 0; f < 6; ++f) bank.proxies[p].held_out[f] = std::move(checks[p * 6 + f]);
 }
 
+// Mesh entries' bodies (model::PanMeshBody) as stored: per mesh entry, in entry order, its entry
+// index, key, scale and centre of mass, and its support points as a CSR. A bank of proxies alone
+// (and a proxy's task) has none.
+void write_mesh_bodies(File& file, const std::string& group, const std::vector<std::pair<std::uint32_t, const model::PanMeshBody*>>& meshes) {
+  if (meshes.empty()) return;
+  create_group(file, group);
+  std::vector<std::uint32_t> entry, offsets{0};
+  std::vector<double> scale, centre, points;
+  std::string keys;
+  for (const auto& [e, m] : meshes) {
+    if (m->key.empty() || m->key.find(' ') != std::string::npos)
+      throw std::invalid_argument("PAN mesh entry: its key is empty or holds a space");
+    entry.push_back(e);
+    keys += (keys.empty() ? "" : " ") + m->key;
+    scale.push_back(m->scale);
+    centre.insert(centre.end(), m->centre_of_mass_m.begin(), m->centre_of_mass_m.end());
+    for (const auto& x : m->support_points_m) points.insert(points.end(), x.begin(), x.end());
+    offsets.push_back(static_cast<std::uint32_t>(points.size() / 3));
+  }
+  write_attribute(file, group, "keys", std::string_view(keys));
+  write_dataset<std::uint32_t>(file, group + "/entry", entry, {entry.size()}, "1");
+  write_dataset<double>(file, group + "/scale", scale, {scale.size()}, "1");
+  write_dataset<double>(file, group + "/centre_of_mass_m", centre, {entry.size(), 3}, "m");
+  write_dataset<std::uint32_t>(file, group + "/support_offsets", offsets, {offsets.size()}, "1");
+  write_dataset<double>(file, group + "/support_points_m", points, {points.size() / 3, 3}, "m", true);
+}
+
+// The mesh bodies under `group` into entries[entry].mesh; InputError for any inconsistency.
+void read_mesh_bodies(const File& file, const std::string& group, std::vector<model::PanMeshBody*> entries) {
+  if (!exists(file, group)) return;
+  const std::string where = file.path() + ": '" + group + "'";
+  Dims n;
+  auto entry = read_dataset<std::uint32_t>(file, group + "/entry", {-1}, "1", &n);
+  const auto nm = static_cast<long long>(n[0]);
+  auto scale = read_dataset<double>(file, group + "/scale", {nm}, "1");
+  auto centre = read_dataset<double>(file, group + "/centre_of_mass_m", {nm, 3}, "m");
+  auto offsets = read_dataset<std::uint32_t>(file, group + "/support_offsets", {nm + 1}, "1");
+  auto points = read_dataset<double>(file, group + "/support_points_m", {-1, 3}, "m");
+  std::vector<std::string> keys;
+  const std::string joined = read_string_attribute(file, group, "keys");
+  for (std::size_t at = 0; at <= joined.size();) {
+    const std::size_t end = std::min(joined.find(' ', at), joined.size());
+    keys.push_back(joined.substr(at, end - at));
+    at = end + 1;
+  }
+  if (keys.size() != entry.size()) throw InputError(where + ": not one key per mesh entry");
+  for (std::size_t k = 0; k < entry.size(); ++k) {
+    if (entry[k] >= entries.size() || !entries[entry[k]]->key.empty())
+      throw InputError(where + ": mesh entry " + std::to_string(k) + " names entry " + std::to_string(entry[k]) +
+                       ", out of range or named twice");
+    if (keys[k].empty() || !(scale[k] > 0 && std::isfinite(scale[k])))
+      throw InputError(where + ": mesh entry " + std::to_string(k) + " has an empty key or a scale that is not positive");
+    if (offsets[k] >= offsets[k + 1] || offsets[k + 1] > points.size() / 3 || (k == 0 && offsets[0] != 0))
+      throw InputError(where + ": '" + group + "/support_offsets' is not a partition of the support points");
+    model::PanMeshBody& m = *entries[entry[k]];
+    m.key = keys[k];
+    m.scale = scale[k];
+    m.centre_of_mass_m = {centre[3 * k], centre[3 * k + 1], centre[3 * k + 2]};
+    for (std::uint32_t i = offsets[k]; i < offsets[k + 1]; ++i) {
+      if (!(std::isfinite(points[3 * i]) && std::isfinite(points[3 * i + 1]) && std::isfinite(points[3 * i + 2])))
+        throw InputError(where + ": a support point is not finite");
+      m.support_points_m.push_back({points[3 * i], points[3 * i + 1], points[3 * i + 2]});
+    }
+  }
+}
+
+// This build writes kPanBankFormatVersion and reads it and 5 (the same values; 6 added mesh entries).
+int check_pan_version(const File& file) {
+  const auto version = has_attribute(file, "/", "format_version") ? read_attribute<std::int32_t>(file, "/", "format_version") : 0;
+  check_header(file, kPanBankFormat, version == 5 ? 5 : kPanBankFormatVersion);
+  return version;
+}
+
 void check_lattice(const std::string& path, std::int32_t divisions, std::int32_t max_levels) {
   // DirectionMesh's limits (kernels/pan/direction_mesh.hpp)
   if (divisions < 2 || divisions % 2 != 0 || max_levels < 0 || max_levels > 16 || divisions > (1 << 20) >> max_levels)
@@ -426,6 +499,10 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
   }
   write_dataset<double>(file, "/proxies/b_m", b, {b.size()}, "m");
   write_dataset<double>(file, "/proxies/c_m", c, {c.size()}, "m");
+  std::vector<std::pair<std::uint32_t, const model::PanMeshBody*>> meshes;
+  for (std::size_t p = 0; p < bank.proxies.size(); ++p)
+    if (bank.proxies[p].is_mesh()) meshes.push_back({static_cast<std::uint32_t>(p), &bank.proxies[p].mesh});
+  write_mesh_bodies(file, "/meshes", meshes);
   write_direction_sets(file, "/directions", sets, h.lattice());
   std::vector<const model::PanHeldOut*> checks;
   for (const auto& p : bank.proxies)
@@ -458,6 +535,7 @@ void write_pan_task(File& file, const std::string& group, const PanTaskResult& t
   // A results folder outlives builds: what its values mean is the bank format's (version 5 divided
   // the symmetry zeros out), so a task fitted for another version is refused, not merged.
   write_attribute<std::int32_t>(file, group, "bank_format_version", kPanBankFormatVersion);
+  if (!task.mesh.key.empty()) write_mesh_bodies(file, group + "/mesh", {{0u, &task.mesh}});
   write_direction_sets(file, group + "/directions", {&task.fit.directions}, lattice);
   std::vector<std::uint32_t> offsets{0}, index;
   std::vector<float> values;
@@ -487,10 +565,11 @@ PanTaskResult read_pan_task(const File& file, const std::string& group, const Pa
   t.field = read_attribute<std::int32_t>(file, group, "field");
   const auto version = has_attribute(file, group, "bank_format_version")
                            ? read_attribute<std::int32_t>(file, group, "bank_format_version") : 4;
-  if (version != kPanBankFormatVersion)
+  if (version != kPanBankFormatVersion && version != 5)  // 6 added mesh entries; the values mean the same
     throw InputError(file.path() + ": fitted for PAN bank format version " + std::to_string(version) +
                      ", this build writes version " + std::to_string(kPanBankFormatVersion) +
                      ": rerun its task (delete the file, or start the sweep without --resume)");
+  read_mesh_bodies(file, group + "/mesh", {&t.mesh});
   t.fit.directions = read_direction_sets(file, group + "/directions", 1, header.divisions, header.lattice()).at(0);
   const std::size_t n_directions = t.fit.directions.vertices.size(), n_values = header.values();
   if (n_directions == 0) throw InputError(file.path() + ": '" + group + "/directions' holds no direction");
@@ -521,7 +600,7 @@ PanTaskResult read_pan_task(const File& file, const std::string& group, const Pa
 
 PanBank read_pan_bank(const std::string& path) {
   auto file = File::open(path);
-  check_header(file, kPanBankFormat, kPanBankFormatVersion);
+  check_pan_version(file);
   PanBank bank;
   PanBankHeader& h = bank.header;
   h.c_m_s = read_attribute<double>(file, "/bank", "c_m_s");
@@ -569,6 +648,9 @@ PanBank read_pan_bank(const std::string& path) {
     }
     bank.proxies.push_back(std::move(proxy));
   }
+  std::vector<model::PanMeshBody*> bodies;
+  for (auto& p : bank.proxies) bodies.push_back(&p.mesh);
+  read_mesh_bodies(file, "/meshes", bodies);
   read_held_out(file, bank);
   bank.sweep = read_sweep_status(file);
   return bank;

@@ -1,6 +1,6 @@
 #pragma once
-// The PAN soundbank file (format "clatter-pan-bank", docs/bank-format.md): per proxy ellipsoid
-// (A, B, C) and rigid-body field, its direction set (kernels/pan/direction_mesh.hpp) and, per
+// The PAN soundbank file (format "clatter-pan-bank", docs/bank-format.md): per entry (a proxy
+// ellipsoid (A, B, C), or a normalized mesh) and rigid-body field, its direction set (kernels/pan/direction_mesh.hpp) and, per
 // direction, the sparse wavelet coefficients of the radial model (the far field and the residual at
 // each stored radius, kernels/pan/radial.hpp). The data is model::PanBank (model/pan_bank.hpp); the
 // numerics live in kernels/pan.
@@ -15,8 +15,9 @@ namespace clatter::io {
 
 inline constexpr const char* kPanBankFormat = "clatter-pan-bank";
 // 3: the radial model replaced the series (8); 4: a direction set per (proxy, field), adaptive;
-// 5: the values are the field over its symmetry zeros (kernels/pan/directions.hpp symmetry_zeros)
-inline constexpr int kPanBankFormatVersion = 5;
+// 5: the values are the field over its symmetry zeros (kernels/pan/directions.hpp symmetry_zeros);
+// 6: entries around meshes (/meshes, model::PanMeshBody). Version 5 files are read too.
+inline constexpr int kPanBankFormatVersion = 6;
 
 // Writes atomically (temporary + rename); coefficients quantized to 16 bits per (direction, value)
 // scale, a refined direction coded as its difference from its parent's interpolation, indices

@@ -76,10 +76,28 @@ struct PanHeldOut {
   std::vector<double> raw_l2;  // per point: the raw series' L2 [Pa per unit acceleration]
 };
 
-// One proxy ellipsoid (A, B, C) and its fields 1..6. Each direction's series are aligned by the
-// support distance (kernels/pan/fit.hpp support_delay_samples), which follows from A, B, C.
+// An entry solved around a closed triangle mesh instead of an ellipsoid (clatter-bank pan-object,
+// 000 section 5's per-object PAN): the mesh as given, moved to its centre of mass and scaled so
+// that its bounding sphere about that centre has the bank's radius A (the normalized mesh, in the
+// given mesh's axes). A scene's object whose mesh is the given one is then the entry scaled by
+// beta = 1 / scale (eq. 10), as an object is its proxy scaled.
+struct PanMeshBody {
+  std::string key;                          // io::mesh_hash of the mesh as given: what a scene's object is matched by
+  double scale = 0;                         // normalized = scale (given - centre_of_mass_m)
+  std::array<double, 3> centre_of_mass_m{};  // of the uniform solid, in the given mesh's coordinates
+  // Normalized vertices of the mesh that are farthest along some direction (convex-hull vertices):
+  // the support distance in direction d is max_k d . x_k (kernels/pan/fit.hpp).
+  std::vector<std::array<double, 3>> support_points_m;
+  bool operator==(const PanMeshBody&) const = default;
+};
+
+// One entry of a bank and its fields 1..6: a proxy ellipsoid (A, B, C), or a mesh (`mesh`, its key
+// set; B = C = 0). Each direction's series are aligned by the body's support distance
+// (kernels/pan/fit.hpp support_delay_samples), which follows from A, B, C or the support points.
 struct PanProxy {
   double b_m = 0, c_m = 0;
+  PanMeshBody mesh;
+  bool is_mesh() const { return !mesh.key.empty(); }
   std::array<PanField, 6> fields;  // fields[field - 1]
   std::array<PanHeldOut, 6> held_out;
 
@@ -95,8 +113,9 @@ struct PanBank {
 
 // One task of a PAN sweep: one field of one proxy, before quantization (sweep result files).
 struct PanTaskResult {
-  std::uint32_t proxy = 0;  // index in the config's proxy list
+  std::uint32_t proxy = 0;  // index in the config's proxy list (pan-object: its object list)
   double b_m = 0, c_m = 0;
+  PanMeshBody mesh;         // a mesh entry's body (key empty for an ellipsoid)
   int field = 0;
   PanField fit;
   // The raw field at the held-out points, for the check at the merge (which codes the bank, so a

@@ -5,6 +5,7 @@
 // ringing modes) and finish it after the last.
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,25 +60,41 @@ class SoundSource {
   virtual std::vector<std::string> coverage(const std::vector<ObjectModel>& /*models*/) const { return {}; }
 };
 
-// Acceleration noise from a PAN bank: nearest proxy by shape, scaled by beta = a / A (eq. 10).
+// Acceleration noise from PAN banks. An object given by a mesh that a bank holds as a mesh entry
+// (clatter-bank pan-object; the key io::mesh_hash) sounds with its own entry, scaled by
+// beta = 1 / its scale, its rotations from its full inertia tensor; every other object with the
+// nearest proxy by shape, scaled by beta = a / A (eq. 10).
 class PanSource : public SoundSource {
  public:
   // The distance in (B, C) within which an object counts as covered: half the diagonal of the
   // paper's grid (0.0475 m steps at A = 0.5 m), the farthest its 66-proxy bank leaves any shape.
   static constexpr double kCoverage_m = 0.0475 * 0.7071067811865476;
 
-  explicit PanSource(const std::string& bank_path);
+  // `proxy_bank` (-b) gives the proxies (and its mesh entries, if any); `object_banks` (-P) mesh
+  // entries. Either may be empty, not both; begin refuses an object neither voices.
+  explicit PanSource(const std::string& proxy_bank, const std::vector<std::string>& object_banks = {});
   std::string name() const override { return "pan"; }
+  void begin(const io::Scene& scene, const std::vector<ObjectModel>& models, int rate_hz) override;
   void add(const Impact& impact, const std::vector<Vec3>& listeners_m, int rate_hz,
            std::vector<std::vector<double>>& out) override;
   std::vector<std::string> coverage(const std::vector<ObjectModel>& models) const override;
+  // After begin: the objects voiced by their own entry.
+  std::size_t own_entries() const;
 
  private:
+  struct EntryRef {
+    std::size_t bank = 0, entry = 0;
+  };
   void add_at(const Impact& impact, const Vec3& listener_world_m, int rate_hz, std::vector<double>& out) const;
+  void add_own(const Impact& impact, const EntryRef& own, const Vec3& listener_world_m, int rate_hz, std::vector<double>& out) const;
   std::array<double, 2> shape_at_bank_a(const kernels::ProxyFit& fit) const;  // (B, C)
   std::size_t nearest_proxy(const kernels::ProxyFit& fit) const;            // closest (B, C) at the bank's A
 
-  model::PanBank bank_;  // as read, evaluated in place (kernels/pan)
+  std::vector<model::PanBank> banks_;  // as read, evaluated in place (kernels/pan); the proxy bank first
+  std::vector<std::string> paths_;
+  std::vector<std::size_t> proxies_;   // the proxy bank's ellipsoid entries
+  std::vector<std::pair<std::string, EntryRef>> keys_;  // every bank's mesh entries, the first of a key kept
+  std::vector<std::optional<EntryRef>> own_;            // per scene object (begin)
 };
 
 }  // namespace clatter::synth

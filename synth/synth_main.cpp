@@ -27,6 +27,7 @@ namespace {
 struct Options {
   std::string scene, impulses, bank, ground_bank, out = "out.wav", format = "float", voices;
   std::vector<std::string> modal_banks, object_banks;
+  std::vector<std::string> object_pans;  // -P: PAN banks of mesh entries (clatter-bank pan-object)
   synth::ModalOptions modal;
   int rate_hz = 44100;
   double max_sustained_s = synth::RenderOptions{}.max_sustained_s;
@@ -110,13 +111,18 @@ void write_voices(const std::string& path, const synth::ModalSource& modal, cons
 int run(const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   if (o.rate_hz < 8000 || o.rate_hz > 384000) throw InputError(fmt::format("--rate {}: must be in [8000, 384000] Hz", o.rate_hz));
-  if (o.bank.empty() && o.modal_banks.empty() && o.object_banks.empty() && o.ground_bank.empty())
-    throw InputError("give a PAN bank (-b), a modal bank (-m), an object bank (-O) or a ground bank (-g), or several");
+  if (o.bank.empty() && o.object_pans.empty() && o.modal_banks.empty() && o.object_banks.empty() && o.ground_bank.empty())
+    throw InputError("give a PAN bank (-b or -P), a modal bank (-m), an object bank (-O) or a ground bank (-g), or several");
   const bool modal_sound = !o.modal_banks.empty() || !o.object_banks.empty();
   const io::Scene scene = synth::load_scene(o.scene, o.impulses, modal_sound);
   std::vector<std::unique_ptr<synth::SoundSource>> owned;
   synth::ModalSource* modal = nullptr;
-  if (!o.bank.empty()) owned.push_back(std::make_unique<synth::PanSource>(o.bank));
+  synth::PanSource* pan = nullptr;
+  if (!o.bank.empty() || !o.object_pans.empty()) {
+    auto p = std::make_unique<synth::PanSource>(o.bank, o.object_pans);
+    pan = p.get();
+    owned.push_back(std::move(p));
+  }
   if (modal_sound) {
     auto m = std::make_unique<synth::ModalSource>(o.modal_banks, o.modal, o.object_banks);
     modal = m.get();
@@ -169,6 +175,9 @@ int run(const Options& o) {
               "objects not alive then, %zu sustained contacts longer than %g s, skipped) rendered in %.3f s\n",
               stats.impacts, stats.fracture_impacts, stats.sustained_impacts, scene.events.size(), stats.skipped_inactive,
               stats.skipped_sustained, o.max_sustained_s, render_s);
+  if (pan && !o.object_pans.empty())
+    std::printf("clatter-synth: pan: %zu of %zu objects sound with their own PAN (-P, their mesh's entry), the others with "
+                "proxies\n", pan->own_entries(), scene.objects.size());
   const auto& mc = stats.mesh_contacts;
   if (mc[0] + mc[1] + mc[2] > 0)
     std::printf("clatter-synth: Hertz contacts on objects' own meshes: %zu on smooth or flat surface, %zu on sharp edges, "
@@ -206,6 +215,9 @@ int main(int argc, char** argv) {
                                         "objects, materials and listeners")->required();
   app.add_option("--impulses", o.impulses, "James-lab rigid-body impulse text file (C/P lines)");
   app.add_option("-b,--bank", o.bank, "PAN bank (clatter-bank pan): acceleration noise");
+  app.add_option("-P,--object-pan", o.object_pans, "PAN bank of meshes (clatter-bank pan-object), repeatable: objects "
+                                                  "whose mesh one holds sound with their own acceleration noise, the others "
+                                                  "with -b's proxies");
   app.add_option("-m,--modal-bank", o.modal_banks, "modal bank (clatter-bank modal), repeatable: one per nu class; each "
                                                    "object rings with the bank nearest its material's nu");
   app.add_option("-O,--object-bank", o.object_banks, "object bank (clatter-bank object), repeatable: objects whose base "

@@ -73,13 +73,13 @@ clatter_error_test(bad_probe_point_nan 0 "--point 1,nan,0.5;coordinates must be 
 # options another kind declared
 clatter_error_test(bad_probe_entry_on_pan 0 "--entry: only for a modal bank;bank.h5 is not one" ${probe_args} --point 1,0.5,0.5 --entry 0)
 clatter_error_test(bad_info_entry_on_pan 0 "--entry: only for a modal bank;bank.h5 is not one" info ${good_bank} --entry 0)
-clatter_error_test(bad_probe_pan_without_proxy 0 "a PAN bank needs --proxy B,C and --field N" probe ${good_bank} --point 1,0.5,0.5)
+clatter_error_test(bad_probe_pan_without_proxy 0 "a PAN bank needs --proxy B,C (or --mesh KEY) and --field N" probe ${good_bank} --point 1,0.5,0.5)
 set_tests_properties(bad_probe_rate bad_probe_point_nan bad_probe_entry_on_pan bad_info_entry_on_pan bad_probe_pan_without_proxy
                      PROPERTIES FIXTURES_REQUIRED pan_bank)
 clatter_error_test(bad_plan_ground 0 "plan: no cost model for a ground bank yet" plan -c ${PROJECT_SOURCE_DIR}/configs/ground-demo.toml)
 clatter_error_test(bad_plan_empty_config 0 "plan: several of the bank kinds' schemas accept this config;--kind" plan -c ${bad}/empty.toml)
 clatter_synth_error_test(bad_synth_option "not expected: --frobnicate;clatter-synth --help" -i ${bad_in}/good.json -b ${good_bank} --frobnicate)
-clatter_synth_error_test(bad_synth_missing_bank "give a PAN bank (-b), a modal bank (-m), an object bank (-O) or a ground bank (-g), or several" -i ${bad_in}/good.json)
+clatter_synth_error_test(bad_synth_missing_bank "give a PAN bank (-b or -P), a modal bank (-m), an object bank (-O) or a ground bank (-g), or several" -i ${bad_in}/good.json)
 clatter_synth_error_test(bad_synth_rate "--rate 100;must be in [8000, 384000] Hz" -i ${bad_in}/good.json -b ${good_bank} --rate 100)
 clatter_synth_error_test(bad_synth_format "--format: mp3 not in {float,pcm24}" -i ${bad_in}/good.json -b ${good_bank} --format mp3)
 clatter_synth_error_test(bad_synth_pcm24_range "--format pcm24;beyond the 24-bit range;add --normalize"
@@ -170,7 +170,7 @@ foreach(case
     "truncated|truncated.h5: not a readable HDF5 file"
     "no_format|no_format.h5: not a Clatter file (no 'format' attribute)|expected format 'clatter-pan-bank'"
     "wrong_format|wrong_format.h5: format 'clatter-fdtd-raw', expected 'clatter-pan-bank'"
-    "wrong_version|wrong_version.h5: format 'clatter-pan-bank' version 1, this build reads version 5"
+    "wrong_version|wrong_version.h5: format 'clatter-pan-bank' version 1, this build reads version 6"
     "wrong_shape|wrong_shape.h5: dataset '/proxies/c_m': expected float64 [2] in 'm', found float64 [1]"
     "corrupt|corrupt.h5: dataset '/coefficients/values' cannot be read: corrupt or truncated file"
     "index_out_of_range|index_out_of_range.h5: '/directions' set 0 (proxy 0, field 1): '/coefficients/index_delta' gives coefficient index 512 outside [0, 512)")
@@ -180,7 +180,7 @@ foreach(case
   set_tests_properties(bad_bank_${file} PROPERTIES FIXTURES_REQUIRED "pan_bank;bad_banks")
 endforeach()
 clatter_error_test(bad_bank_info_corrupt 0 "corrupt.h5;cannot be read: corrupt or truncated file" info ${bad_banks}/corrupt.h5)
-clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads version 5" info ${bad_banks}/wrong_version.h5)
+clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads version 6" info ${bad_banks}/wrong_version.h5)
 clatter_error_test(bad_bank_info_wrong_format 0 "wrong_format.h5: format 'clatter-fdtd-raw' is not a bank's;clatter-pan-bank, clatter-modal-bank, clatter-object-bank, clatter-ground-bank"
                    info ${bad_banks}/wrong_format.h5)
 clatter_error_test(bad_bank_info_no_format 0 "no_format.h5: not a Clatter file (no 'format' attribute);expected a bank"
@@ -237,3 +237,11 @@ clatter_error_test(bad_modal_residual_limit 0 "solver.residual_limit = 1e-12;mus
 clatter_error_test(bad_modal_nev_per_shift 0 "solver.nev_per_shift = 8;at least 10"
                    modal --set solver.nev_per_shift=8 -o out.h5)
 clatter_error_test(bad_modal_min_ratio_one_np2 2 "'patch.min_ratio' = '1';must be in (0, 1)" modal --set patch.min_ratio=1 -o out.h5)
+# pan-object (per-object PAN): the meshes
+clatter_error_test(bad_pan_object_no_meshes 0 "'objects.meshes' is empty;at least one mesh" pan-object -o out.h5)
+clatter_error_test(bad_pan_object_missing 0 "'objects.meshes' entry 1 = 'nowhere.obj';cannot open the mesh file"
+                   pan-object "--set=objects.meshes=[\"nowhere.obj\"]" -o out.h5)
+clatter_error_test(bad_pan_object_asymmetric 0 "'objects.meshes' entry 1;tetrahedron.obj;not mirror-symmetric;mirror-symmetric meshes only"
+                   pan-object "--set=objects.meshes=[\"${bad}/tetrahedron.obj\"]" -o out.h5)
+clatter_error_test(bad_pan_object_twice 0 "'objects.meshes' entry 2;octahedron.obj;the same mesh as entry 1"
+                   pan-object "--set=objects.meshes=[\"${bad}/octahedron.obj\", \"${bad}/octahedron.obj\"]" -o out.h5)

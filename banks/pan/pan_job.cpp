@@ -24,6 +24,7 @@ model::PanHeldOut check_held_out(const PanSpec& spec, const model::PanBankHeader
   model::PanProxy stored;
   stored.b_m = built.b_m;
   stored.c_m = built.c_m;
+  stored.mesh = built.mesh;
   stored.fields[static_cast<std::size_t>(field - 1)] = io::stored_field(header, built.field(field));
   const std::size_t ns = static_cast<std::size_t>(spec.solve.n_samples);
   model::PanHeldOut out;
@@ -49,6 +50,7 @@ TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task
   r.proxy = static_cast<std::uint32_t>(task.proxy);
   r.b_m = result.proxy.b_m;
   r.c_m = result.proxy.c_m;
+  r.mesh = result.proxy.mesh;
   r.field = task.field;
   r.held_out_points_m = points;
   r.held_out_raw = std::move(result.extra_series.at(0));
@@ -61,24 +63,21 @@ TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task
 model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results_dir, const std::string& config_toml) {
   model::PanBank bank;
   bank.header = pan_header(spec);
-  for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) {
-    model::PanProxy proxy;
-    proxy.b_m = spec.proxies_bc_m[p][0];
-    proxy.c_m = spec.proxies_bc_m[p][1];
-    bank.proxies.push_back(std::move(proxy));
-  }
+  for (const auto& body : spec.bodies) bank.proxies.push_back(body.entry());
   const auto tasks = pan_tasks(spec);
   bank.sweep.sweep_id = io::sweep_id(config_toml);
   bank.sweep.tasks_total = static_cast<std::uint32_t>(tasks.size());
   for (const auto& t : tasks) {
-    const std::string label = fmt::format("{} (B, C) = ({:.4g}, {:.4g}) m, field {}", t.name, spec.proxies_bc_m[t.proxy][0],
-                                          spec.proxies_bc_m[t.proxy][1], t.field);
+    const std::string label = fmt::format("{} {}, field {}", t.name, spec.bodies[t.proxy].label(), t.field);
     if (!task_done(results_dir, t.name, label, config_toml, bank.sweep)) continue;
     auto file = io::File::open(io::task_path(results_dir, t.name));
     auto r = io::read_pan_task(file, "/result", bank.header);
     if (r.proxy != t.proxy || r.field != t.field)
       throw InputError(fmt::format("{}: holds proxy {} field {}, expected {} field {}", file.path(), r.proxy, r.field,
                                    t.proxy, t.field));
+    if (r.mesh != bank.proxies[t.proxy].mesh)
+      throw InputError(fmt::format("{}: was solved around another body than {} (its mesh key '{}', scale {})", file.path(),
+                                   spec.bodies[t.proxy].label(), r.mesh.key, r.mesh.scale));
     try {  // the replay io cannot do (kernels/pan/direction_mesh.hpp)
       if (pan::DirectionMesh(bank.header.divisions, bank.header.max_levels, r.fit.directions).size() != r.fit.terms.size())
         throw std::invalid_argument("not one set of terms per direction");
@@ -121,8 +120,9 @@ struct Alignment {
 };
 Alignment alignment(const PanSpec& spec, std::size_t proxy, const std::array<double, 3>& d) {
   const double dt = spec.solve.problem.dt_s;
-  const double delay = pan::support_delay_samples(d, spec.a_m, spec.proxies_bc_m[proxy][0], spec.proxies_bc_m[proxy][1],
-                                                  spec.solve.problem.c_m_s, dt);
+  const PanBody& body = spec.bodies[proxy];
+  const double delay =
+      pan::support_delay_samples(d, spec.a_m, body.b_m, body.c_m, body.shape, spec.solve.problem.c_m_s, dt);
   const int whole = static_cast<int>(std::floor(delay));
   return {whole, -(delay - whole) * dt};
 }
@@ -148,16 +148,16 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                         const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s) {
   namespace fdtd = kernels::fdtd;
   SolveSpec s = spec.solve;
-  const double b_m = spec.proxies_bc_m[proxy][0], c_m = spec.proxies_bc_m[proxy][1];
-  s.problem.body = {spec.a_m, b_m, c_m};
+  const PanBody& body = spec.bodies[proxy];
+  s.problem.body = {spec.a_m, body.b_m, body.c_m};
+  s.problem.mesh = body.mesh;  // a mesh entry's (normalized, mirror-symmetric: the octant solve holds)
   // make_pan_spec checked the radii; the extra listeners are new, heard through the Kirchhoff
   // surface like them, anywhere outside it.
   for (std::size_t l = 0; l < extra_listeners_m.size(); ++l)
     if (auto why = surface_listener_problem(s, extra_listeners_m[l]))
-      throw InputError(fmt::format("extra listener {} for proxy (B, C) = ({}, {}): {}", l + 1, b_m, c_m, *why));
+      throw InputError(fmt::format("extra listener {} for {}: {}", l + 1, body.label(), *why));
   ProxyResult out;
-  out.proxy.b_m = b_m;
-  out.proxy.c_m = c_m;
+  out.proxy = body.entry();
   std::vector<int> shifts;
   for (int k : spec.shift_steps) shifts.push_back(k - spec.lead_steps);
   const pan::Fitter fitter(spec.radii_m, shifts, spec.length);

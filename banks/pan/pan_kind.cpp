@@ -17,6 +17,36 @@
 namespace clatter::jobs {
 namespace {
 
+// The sweep of either kind: one task per (entry, field), merged into one PAN bank file.
+BankSweep pan_sweep(const char* kind, const io::Config& config, std::shared_ptr<const PanSpec> spec,
+                    const RunContext& context) {
+  const auto tasks = std::make_shared<const std::vector<PanTask>>(pan_tasks(*spec));
+  BankSweep sweep;
+  sweep.manifest = {kind, config.to_toml()};
+  const bool meshes = !spec->bodies.empty() && spec->bodies[0].mesh;
+  sweep.summary = fmt::format("{} {} x {} fields = {} tasks; {} directions{} x ({} radii + the far field), "
+                              "epsilon = {}",
+                              spec->bodies.size(), meshes ? "meshes" : "proxies", spec->solve.fields.size(), tasks->size(),
+                              kernels::pan::vertex_count(spec->divisions),
+                              spec->direction_tolerance > 0
+                                  ? fmt::format(", refined per field to {:g} % (at most {})",
+                                                100 * spec->direction_tolerance, spec->max_directions)
+                                  : std::string(),
+                              spec->radii_m.size(), spec->epsilon);
+  for (const auto& t : *tasks) sweep.task_names.push_back(t.name);
+  sweep.run_task = [spec, tasks, progress_s = context.progress_interval_s](MPI_Comm group, std::size_t t) {
+    return run_pan_task(group, *spec, (*tasks)[t], progress_s);
+  };
+  const std::string& toml = sweep.manifest.config_toml;
+  sweep.merge = bank_merge<model::PanBank>(
+      [spec, toml](const std::string& results_dir) { return merge_pan_results(*spec, results_dir, toml); },
+      [toml, kind](const std::string& out, const model::PanBank& bank, const std::string& command, int n_ranks) {
+        io::write_pan_bank(out, bank, command, toml, n_ranks);
+        spdlog::info("{}: {}", kind, held_out_summary(bank, false));
+      });
+  return sweep;
+}
+
 class PanKind final : public BankKind {
  public:
   const char* name() const override { return "pan"; }
@@ -29,31 +59,7 @@ class PanKind final : public BankKind {
   const io::Schema& schema() const override { return pan_schema(); }
 
   BankSweep sweep(const io::Config& config, const RunContext& context) const override {
-    const auto spec = std::make_shared<const PanSpec>(make_pan_spec(config));
-    const auto tasks = std::make_shared<const std::vector<PanTask>>(pan_tasks(*spec));
-    BankSweep sweep;
-    sweep.manifest = {name(), config.to_toml()};
-    sweep.summary = fmt::format("{} proxies x {} fields = {} tasks; {} directions{} x ({} radii + the far field), "
-                                "epsilon = {}",
-                                spec->proxies_bc_m.size(), spec->solve.fields.size(), tasks->size(),
-                                kernels::pan::vertex_count(spec->divisions),
-                                spec->direction_tolerance > 0
-                                    ? fmt::format(", refined per field to {:g} % (at most {})",
-                                                  100 * spec->direction_tolerance, spec->max_directions)
-                                    : std::string(),
-                                spec->radii_m.size(), spec->epsilon);
-    for (const auto& t : *tasks) sweep.task_names.push_back(t.name);
-    sweep.run_task = [spec, tasks, progress_s = context.progress_interval_s](MPI_Comm group, std::size_t t) {
-      return run_pan_task(group, *spec, (*tasks)[t], progress_s);
-    };
-    const std::string& toml = sweep.manifest.config_toml;
-    sweep.merge = bank_merge<model::PanBank>(
-        [spec, toml](const std::string& results_dir) { return merge_pan_results(*spec, results_dir, toml); },
-        [toml](const std::string& out, const model::PanBank& bank, const std::string& command, int n_ranks) {
-          io::write_pan_bank(out, bank, command, toml, n_ranks);
-          spdlog::info("pan: {}", held_out_summary(bank, false));
-        });
-    return sweep;
+    return pan_sweep(name(), config, std::make_shared<const PanSpec>(make_pan_spec(config)), context);
   }
 
   FileTool info(CLI::App&) const override { return {{}, [](const std::string& path) { return pan_bank_info(path); }}; }
@@ -62,6 +68,9 @@ class PanKind final : public BankKind {
     auto request = std::make_shared<ProbeRequest>();
     ProbeRequest& r = *request;
     CLI::Option* proxy = app.add_option("--proxy", r.proxy_bc_m, "PAN: proxy semi-axes B,C [m]")->delimiter(',');
+    CLI::Option* mesh = app.add_option("--mesh", r.mesh_key, "PAN: a mesh entry, by its key or the key's start "
+                                                             "(clatter-bank info lists them)")
+                            ->excludes(proxy);
     CLI::Option* field = app.add_option("--field", r.field, "PAN: rigid-body field 1-6");
     CLI::Option* rate = app.add_option("--rate", r.rate_hz, "PAN: output sample rate [Hz]: reconstruct within 2x of it "
                                                             "(Algorithm 1); 0: the bank's rate")
@@ -71,9 +80,9 @@ class PanKind final : public BankKind {
                                                            "(the paper's)")
             ->transform(CLI::CheckedTransformer(std::map<std::string, kernels::pan::Interpolation>{
                 {"linear", kernels::pan::Interpolation::linear}, {"quadratic", kernels::pan::Interpolation::quadratic}}));
-    return {{proxy, field, rate, interpolation}, [request, &point, proxy, field](const std::string& path) {
-              if (proxy->count() == 0 || field->count() == 0)
-                throw InputError("probe " + path + ": a PAN bank needs --proxy B,C and --field N");
+    return {{proxy, mesh, field, rate, interpolation}, [request, &point, proxy, mesh, field](const std::string& path) {
+              if ((proxy->count() == 0 && mesh->count() == 0) || field->count() == 0)
+                throw InputError("probe " + path + ": a PAN bank needs --proxy B,C (or --mesh KEY) and --field N");
               ProbeRequest q = *request;
               q.bank_path = path;
               q.point_m = point.point_m;
@@ -89,10 +98,35 @@ class PanKind final : public BankKind {
   std::vector<Command> more_commands(CLI::App& parent) const override { return {add_solve_command(parent)}; }
 };
 
+// 000 section 5's per-object PAN: the same sweep over given meshes. Its files are PAN banks
+// (format clatter-pan-bank), so `info`, `probe` and `plan` are the pan kind's.
+class PanObjectKind final : public BankKind {
+ public:
+  const char* name() const override { return "pan-object"; }
+  const char* description() const override {
+    return "build a PAN bank of given closed meshes (per-object PAN): the pan bank's solves, directions and fit "
+           "around each mesh, keyed by its hash (docs/pan.md \"Objects with their own PAN\")";
+  }
+  const char* default_out() const override { return "objects-pan.h5"; }
+  const char* file_format() const override { return io::kPanBankFormat; }
+  const io::Schema& schema() const override { return pan_object_schema(); }
+
+  BankSweep sweep(const io::Config& config, const RunContext& context) const override {
+    return pan_sweep(name(), config, std::make_shared<const PanSpec>(make_pan_spec(parse_pan_object_params(config))),
+                     context);
+  }
+  FileTool info(CLI::App& app) const override { return pan_kind().info(app); }
+};
+
 }  // namespace
 
 const BankKind& pan_kind() {
   static const PanKind kind;
+  return kind;
+}
+
+const BankKind& pan_object_kind() {
+  static const PanObjectKind kind;
   return kind;
 }
 

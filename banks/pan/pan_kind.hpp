@@ -7,5 +7,7 @@
 namespace clatter::jobs {
 
 const BankKind& pan_kind();
+// `clatter-bank pan-object`: the same sweep over given meshes (per-object PAN), a PAN bank file.
+const BankKind& pan_object_kind();
 
 }  // namespace clatter::jobs

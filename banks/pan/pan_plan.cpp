@@ -92,8 +92,9 @@ PlanCost plan_cost(const io::Config& config, const PanSpec& spec, std::size_t n_
 // The plan as printed: the sweep, the cost per task and of the job, and every task.
 std::string pan_report(const PanSpec& spec, const std::vector<PanTask>& tasks, const PlanOptions& o, const PlanCost& c) {
   const auto& g = spec.solve.problem.grid;
-  std::string out = fmt::format("plan: {}: {} proxies x {} fields = {} tasks\n", o.config_path.empty() ? "defaults" : o.config_path,
-                                spec.proxies_bc_m.size(), spec.solve.fields.size(), tasks.size());
+  std::string out = fmt::format("plan: {}: {} {} x {} fields = {} tasks\n", o.config_path.empty() ? "defaults" : o.config_path,
+                                spec.bodies.size(), !spec.bodies.empty() && spec.bodies[0].mesh ? "meshes" : "proxies",
+                                spec.solve.fields.size(), tasks.size());
   out += fmt::format("  per task:    {} grid {}x{}x{} = {:.3g} M cells, {} steps: {:.3g} cell-updates; {}{:.0f} series "
                      "through the Kirchhoff surface{}\n",
                      g.octant ? "octant" : "full", g.n[0], g.n[1], g.n[2], c.cells / 1e6, c.steps, c.updates,
@@ -111,8 +112,8 @@ std::string pan_report(const PanSpec& spec, const std::vector<PanTask>& tasks, c
                      clock_text(c.limit_s));
   out += "  tasks:\n";
   for (const auto& t : tasks)
-    out += fmt::format("    {}  (B, C) = ({:.4g}, {:.4g}) m  field {}  {:.3g} cell-updates\n", t.name,
-                       spec.proxies_bc_m[t.proxy][0], spec.proxies_bc_m[t.proxy][1], t.field, c.updates);
+    out += fmt::format("    {}  {}  field {}  {:.3g} cell-updates\n", t.name, spec.bodies[t.proxy].label(), t.field,
+                       c.updates);
   return out;
 }
 

@@ -8,7 +8,9 @@
 #include <random>
 
 #include "core/errors.hpp"
+#include "io/mesh.hpp"
 #include "banks/medium_keys.hpp"
+#include "kernels/fdtd/mesh_body.hpp"
 #include "kernels/fdtd/problem.hpp"
 #include "kernels/pan/directions.hpp"
 #include "kernels/pan/fit.hpp"
@@ -21,13 +23,21 @@ namespace pan = kernels::pan;
 // Far beyond a useful bank (the paper's grid has 66 proxies), far below exhausting memory.
 constexpr double kMaxProxies = 1e5;
 
+namespace {
+
+// The proxy grid's keys: pan's alone (pan-object's entries are meshes).
+bool proxy_grid_key(const std::string& key) { return key == "proxies.grid_min_m" || key == "proxies.grid_step_m" || key == "proxies.list_m"; }
+
+}  // namespace
+
 const io::Schema& pan_schema() {
   static const io::Schema schema = [] {
     io::Schema s{"clatter-bank pan: the PAN proxy bank (FDTD solves, wavelet fit, compression)", medium_and_pulse_keys()};
     // The defaults are the paper's bank (Chadwick et al. 2012, section 5), the one users should build;
     // configs/pan-demo.toml is the small fast one.
     s.keys.insert(s.keys.end(), {
-        {"proxies.a_m", 0.5, "semi-axis A of every proxy [m]", {0.0, 100.0, true}},
+        {"proxies.a_m", 0.5, "semi-axis A of every proxy [m]; pan-object: the radius every mesh is scaled to",
+         {0.0, 100.0, true}},
         {"proxies.grid_min_m", 0.025, "smallest B and C of the proxy grid [m]", {0.0, 100.0, true}},
         {"proxies.grid_step_m", 0.0475, "step of B and C in the proxy grid [m]", {0.0, 100.0, true}},
         {"proxies.list_m", io::RealList{}, "explicit (B, C) proxies [m]; when given, replaces the grid", {0.0, 100.0},
@@ -70,16 +80,30 @@ const io::Schema& pan_schema() {
   return schema;
 }
 
-PanParams parse_pan_params(const io::Config& config) {
-  PanParams p;
+const io::Schema& pan_object_schema() {
+  static const io::Schema schema = [] {
+    io::Schema s{"clatter-bank pan-object: the PAN bank of given closed meshes, one entry each (000 section 5's "
+                 "per-object PAN; the same solve, directions and fit as a proxy's)", {}};
+    for (const auto& key : pan_schema().keys)
+      if (!proxy_grid_key(key.name)) s.keys.push_back(key);
+    s.keys.push_back({"objects.meshes", io::StringList{}, "closed, consistently oriented triangle meshes (OBJ, metres), "
+                                                          "one entry each, keyed by io::mesh_hash; each is moved to its "
+                                                          "centre of mass and scaled to bounding radius proxies.a_m, and "
+                                                          "must be mirror-symmetric in the planes through it (one octant "
+                                                          "of directions per field, as a proxy's)"});
+    return s;
+  }();
+  return schema;
+}
+
+namespace {
+
+// The keys both kinds share.
+void parse_shared_params(const io::Config& config, PanParams& p) {
   p.medium_c_m_s = config.real("medium.c_m_s");
   p.medium_rho_kg_m3 = config.real("medium.rho_kg_m3");
   p.pulse_h_s = config.real("pulse.h_s");
   p.proxies_a_m = config.real("proxies.a_m");
-  p.proxies_grid_min_m = config.real("proxies.grid_min_m");
-  p.proxies_grid_step_m = config.real("proxies.grid_step_m");
-  const auto& list = config.reals("proxies.list_m");
-  for (std::size_t i = 0; i + 1 < list.size(); i += 2) p.proxies_list_m.push_back({list[i], list[i + 1]});
   p.grid_dx_m = config.real("grid.dx_m");
   p.grid_pml_cells = static_cast<int>(config.integer("grid.pml_cells"));
   p.time_dt_s = config.real("time.dt_s");
@@ -96,6 +120,25 @@ PanParams parse_pan_params(const io::Config& config) {
   p.solver_cut_cell_samples = static_cast<int>(config.integer("solver.cut_cell_samples"));
   p.solver_scheme = config.string("solver.scheme");
   p.solver_max_dispersion_error = config.real("solver.max_dispersion_error");
+}
+
+}  // namespace
+
+PanParams parse_pan_params(const io::Config& config) {
+  PanParams p;
+  parse_shared_params(config, p);
+  p.proxies_grid_min_m = config.real("proxies.grid_min_m");
+  p.proxies_grid_step_m = config.real("proxies.grid_step_m");
+  const auto& list = config.reals("proxies.list_m");
+  for (std::size_t i = 0; i + 1 < list.size(); i += 2) p.proxies_list_m.push_back({list[i], list[i + 1]});
+  return p;
+}
+
+PanParams parse_pan_object_params(const io::Config& config) {
+  PanParams p;
+  parse_shared_params(config, p);
+  p.objects_meshes = config.strings("objects.meshes");
+  if (p.objects_meshes.empty()) throw InputError("config: key 'objects.meshes' is empty: a pan-object bank needs at least one mesh");
   return p;
 }
 
@@ -157,16 +200,88 @@ SolveParams proxy_solve_params(const PanParams& in, const PanSpec& spec) {
 
 }  // namespace
 
+model::PanProxy PanBody::entry() const {
+  model::PanProxy e;
+  e.b_m = b_m;
+  e.c_m = c_m;
+  e.mesh = shape;
+  return e;
+}
+
+std::string PanBody::label() const {
+  return mesh ? fmt::format("mesh '{}'", source) : fmt::format("(B, C) = ({:.4g}, {:.4g}) m", b_m, c_m);
+}
+
+namespace {
+
+// Entry i of objects.meshes: read, moved to its centre of mass, scaled to bounding radius a_m.
+PanBody mesh_body(const std::string& path, std::size_t i, double a_m) {
+  auto bad = [&](const std::string& why) {
+    return InputError(fmt::format("config: key 'objects.meshes' entry {} = '{}': {}", i + 1, path, why));
+  };
+  io::TriangleMesh mesh;
+  try {
+    mesh = io::read_obj(path);
+  } catch (const InputError& e) {
+    throw bad(e.what());
+  }
+  PanBody body;
+  body.source = path;
+  body.shape.key = io::mesh_hash(mesh);
+  try {
+    const kernels::fdtd::MeshBody given(mesh.vertices_m, mesh.triangles);  // its centre of mass and radius
+    body.shape.centre_of_mass_m = given.centre_of_mass_offset_m();
+    body.shape.scale = a_m / given.bounding_radius_m();
+    for (auto& v : mesh.vertices_m)
+      for (int a = 0; a < 3; ++a) v[a] = body.shape.scale * (v[a] - body.shape.centre_of_mass_m[a]);
+    body.mesh = std::make_shared<const kernels::fdtd::MeshBody>(std::move(mesh.vertices_m), std::move(mesh.triangles));
+  } catch (const std::invalid_argument& e) {
+    throw bad(e.what());
+  }
+  if (!body.mesh->mirror_symmetric())
+    throw bad(fmt::format("not mirror-symmetric in the planes x = 0, y = 0, z = 0 through its centre of mass ({}); a "
+                          "pan-object bank stores one octant of directions per field, as a proxy's, so it holds "
+                          "mirror-symmetric meshes only (their own axes as given)",
+                          std::isfinite(body.mesh->mirror_mismatch())
+                              ? fmt::format("sampled lines differ from their mirror images by {:.3g} of its radius",
+                                            body.mesh->mirror_mismatch())
+                              : std::string("a sampled line and its mirror image cross it a different number of times")));
+  body.shape.support_points_m = pan::support_points(body.mesh->vertices_m());
+  return body;
+}
+
+std::vector<PanBody> bodies(const PanParams& in) {
+  std::vector<PanBody> out;
+  if (!in.objects_meshes.empty()) {
+    for (std::size_t i = 0; i < in.objects_meshes.size(); ++i) {
+      out.push_back(mesh_body(in.objects_meshes[i], i, in.proxies_a_m));
+      for (std::size_t j = 0; j + 1 < out.size(); ++j)
+        if (out[j].shape.key == out.back().shape.key)
+          throw InputError(fmt::format("config: key 'objects.meshes' entry {} = '{}': the same mesh as entry {} ('{}')",
+                                       i + 1, in.objects_meshes[i], j + 1, in.objects_meshes[j]));
+    }
+    return out;
+  }
+  const auto list = proxy_list(in);
+  for (std::size_t p = 0; p < list.size(); ++p) {
+    const auto [b, c] = list[p];
+    if (!(c <= b && b <= in.proxies_a_m))
+      throw InputError(fmt::format("config: key 'proxies.list_m' proxy {} = [{}, {}]: needs C <= B <= A = {}", p + 1, b,
+                                   c, in.proxies_a_m));
+    PanBody body;
+    body.b_m = b;
+    body.c_m = c;
+    out.push_back(std::move(body));
+  }
+  return out;
+}
+
+}  // namespace
+
 PanSpec make_pan_spec(const PanParams& in) {
   PanSpec spec;
   spec.a_m = in.proxies_a_m;
-  spec.proxies_bc_m = proxy_list(in);
-  for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p) {
-    const auto [b, c] = spec.proxies_bc_m[p];
-    if (!(c <= b && b <= spec.a_m))
-      throw InputError(fmt::format("config: key 'proxies.list_m' proxy {} = [{}, {}]: needs C <= B <= A = {}", p + 1, b,
-                                   c, spec.a_m));
-  }
+  spec.bodies = bodies(in);
   spec.divisions = in.fit_divisions;
   spec.layout_levels = 0;
   while ((2 << spec.layout_levels) < spec.divisions) ++spec.layout_levels;
@@ -230,9 +345,9 @@ model::PanBankHeader pan_header(const PanSpec& spec) {
 
 std::vector<PanTask> pan_tasks(const PanSpec& spec) {
   std::vector<PanTask> tasks;
-  for (std::size_t p = 0; p < spec.proxies_bc_m.size(); ++p)
+  for (std::size_t p = 0; p < spec.bodies.size(); ++p)
     for (int field : spec.solve.fields)
-      tasks.push_back({p, field, fmt::format("p{:03}-f{}", p, field)});
+      tasks.push_back({p, field, fmt::format("{}{:03}-f{}", spec.bodies[p].mesh ? 'o' : 'p', p, field)});
   return tasks;
 }
 

@@ -5,6 +5,7 @@
 // clatter-bank does.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,12 +16,27 @@
 namespace clatter::jobs {
 
 const io::Schema& pan_schema();
+// `clatter-bank pan-object`: pan_schema's keys but the proxy grid's, and objects.meshes.
+const io::Schema& pan_object_schema();
+
+// One entry's body: a proxy ellipsoid (A, B, C), or a closed mesh (pan-object), normalized
+// (model::PanMeshBody: moved to its centre of mass, scaled to bounding radius A).
+struct PanBody {
+  double b_m = 0, c_m = 0;
+  std::shared_ptr<const kernels::fdtd::MeshBody> mesh;  // the normalized mesh, for a mesh entry
+  model::PanMeshBody shape;                             // its key, scale, centre of mass, support points
+  std::string source;                                   // the OBJ file as the config gives it
+  // An entry of the bank with this body and no fields (support_delay_samples reads it).
+  model::PanProxy entry() const;
+  // "(B, C) = (0.5, 0.12) m" or "mesh 'plate.obj'", for messages.
+  std::string label() const;
+};
 
 struct PanSpec {
-  // One proxy's solve, body set per proxy; its Kirchhoff surface hears the directions x radii and
+  // One entry's solve, body set per entry; its Kirchhoff surface hears the directions x radii and
   // the far fields (build_proxy, through run_solve's SurfaceHook).
   SolveSpec solve;
-  std::vector<std::array<double, 2>> proxies_bc_m;  // (B, C)
+  std::vector<PanBody> bodies;  // the proxies (B, C), or pan-object's meshes
   double a_m = 0.5;
   std::vector<double> radii_m;         // ascending, whole numbers of steps: shift[i] * c * dt
   std::vector<int> shift_steps;
@@ -49,6 +65,7 @@ struct PanParams {
   double pulse_h_s = 0;
   double proxies_a_m = 0, proxies_grid_min_m = 0, proxies_grid_step_m = 0;
   std::vector<std::array<double, 2>> proxies_list_m;  // (B, C); when given, replaces the grid
+  std::vector<std::string> objects_meshes;            // pan-object: the OBJ files (then no proxies)
   double grid_dx_m = 0;
   int grid_pml_cells = 0;
   double time_dt_s = 0, time_tail_s = 0;
@@ -67,6 +84,8 @@ struct PanParams {
 };
 
 PanParams parse_pan_params(const io::Config& config);
+// The same for pan_object_schema(): objects.meshes, the proxy grid's keys absent.
+PanParams parse_pan_object_params(const io::Config& config);
 
 // Throws InputError for any invalid combination (the solve's checks included: make_solve_spec).
 PanSpec make_pan_spec(const PanParams& params);
@@ -75,7 +94,8 @@ PanSpec make_pan_spec(const io::Config& config);
 
 model::PanBankHeader pan_header(const PanSpec& spec);
 
-// The sweep (sweep/sweep.hpp): one task per proxy and solved field, named "pNNN-fK".
+// The sweep (sweep/sweep.hpp): one task per entry and solved field, named "pNNN-fK" (a mesh
+// entry: "oNNN-fK").
 struct PanTask {
   std::size_t proxy = 0;
   int field = 1;

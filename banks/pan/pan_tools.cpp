@@ -36,6 +36,10 @@ model::PanBank read_checked(const std::string& path) {
 
 }  // namespace
 
+std::string entry_label(const model::PanProxy& entry) {
+  return entry.is_mesh() ? fmt::format("mesh {}", entry.mesh.key.substr(0, 12)) : fmt::format("({:.4g}, {:.4g})", entry.b_m, entry.c_m);
+}
+
 std::string held_out_summary(const model::PanBank& bank, bool table) {
   struct Row {
     std::size_t proxy;
@@ -75,11 +79,11 @@ std::string held_out_summary(const model::PanBank& bank, bool table) {
   }
   if (checked == 0) return "no held-out checks (check.held_out_directions = 0, or a bank merged before them)";
   auto name = [&](const Row& r) {
-    return fmt::format("({:.4g}, {:.4g}) field {}", bank.proxies[r.proxy].b_m, bank.proxies[r.proxy].c_m, r.field);
+    return fmt::format("{} field {}", entry_label(bank.proxies[r.proxy]), r.field);
   };
   std::string out;
   if (table) {
-    out += fmt::format("  {:<26} {:>7} {:>8} {:>8} {:>9} {:>9}\n", "proxy (B, C) [m], field", "energy", "median",
+    out += fmt::format("  {:<26} {:>7} {:>8} {:>8} {:>9} {:>9}\n", "entry (B, C [m]), field", "energy", "median",
                        "worst", "floored", "> 5 %");
     for (const auto& r : rows) {
       if (r.share < kExcludedEnergy)
@@ -103,7 +107,7 @@ std::string held_out_summary(const model::PanBank& bank, bool table) {
   const std::string indent = table ? "  " : "";
   if (!worst) return out + indent + fmt::format("held out: {} fields checked, none radiated", checked);
   out += indent + fmt::format("held out: worst {:.2f} % ({}), floored {:.2f} % ({}); {} of {} fields not radiated (below {:g} % "
-                     "of their proxy's strongest energy), excluded",
+                     "of their entry's strongest energy), excluded",
                      100 * worst->worst, name(*worst), 100 * worst_floored->floored, name(*worst_floored), excluded, checked,
                      100 * kExcludedEnergy);
   return out;
@@ -127,12 +131,22 @@ std::string pan_bank_info(const std::string& path) {
     }
   const double file_mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
   const double raw_mb = static_cast<double>(directions) * static_cast<double>(h.values()) * h.length * 4 / 1e6;
-  std::string out = fmt::format("{}: PAN bank (format {} v{})\n", path, io::kPanBankFormat, io::kPanBankFormatVersion);
-  out += fmt::format("  proxies:     {} ellipsoids, A = {} m, fields 1-6 (translation x y z, rotation x y z)\n",
-                     bank.proxies.size(), h.a_m);
+  std::string out = fmt::format("{}: PAN bank (format {} v{})\n", path, io::kPanBankFormat,
+                                io::read_attribute<std::int32_t>(file, "/", "format_version"));
+  const auto meshes = static_cast<std::size_t>(
+      std::count_if(bank.proxies.begin(), bank.proxies.end(), [](const model::PanProxy& p) { return p.is_mesh(); }));
+  out += fmt::format("  entries:     {} ellipsoids and {} meshes, A = {} m, fields 1-6 (translation x y z, rotation x y z)\n",
+                     bank.proxies.size() - meshes, meshes, h.a_m);
   std::string list;
-  for (const auto& p : bank.proxies) list += fmt::format(" ({:.4g}, {:.4g})", p.b_m, p.c_m);
-  out += "  (B, C) [m]: " + list + "\n";
+  for (const auto& p : bank.proxies)
+    if (!p.is_mesh()) list += fmt::format(" ({:.4g}, {:.4g})", p.b_m, p.c_m);
+  if (meshes < bank.proxies.size()) out += "  (B, C) [m]: " + list + "\n";
+  for (const auto& p : bank.proxies)
+    if (p.is_mesh())
+      out += fmt::format("  mesh:        {}: scaled by {:.6g} to bounding radius A about its centre of mass ({:.6g}, "
+                         "{:.6g}, {:.6g}) m (the mesh as given: --scale {:.6g}); {} support points\n",
+                         p.mesh.key, p.mesh.scale, p.mesh.centre_of_mass_m[0], p.mesh.centre_of_mass_m[1],
+                         p.mesh.centre_of_mass_m[2], 1.0 / p.mesh.scale, p.mesh.support_points_m.size());
   out += fmt::format("  medium:      c = {} m/s, rho = {} kg/m^3; pulse h = {} s; t = 0 at the centre of psi\n", h.c_m_s,
                      h.rho_kg_m3, h.h_s);
   out += fmt::format("  sampling:    {:.6g} Hz, wavelet length {} (Daubechies 10)\n", 1.0 / h.dt_s, h.length);
@@ -151,7 +165,7 @@ std::string pan_bank_info(const std::string& path) {
                      run("created_utc"));
   out += "  command:     " + run("command") + "\n";
   const auto& sw = bank.sweep;
-  out += fmt::format("  sweep:       {} of {} tasks (proxy x field) in the bank, {} failed, {} missing\n",
+  out += fmt::format("  sweep:       {} of {} tasks (entry x field) in the bank, {} failed, {} missing\n",
                      sw.tasks_total - sw.failed.size() - sw.missing.size(), sw.tasks_total, sw.failed.size(),
                      sw.missing.size());
   for (const auto& f : sw.failed) out += "    failed:  " + f + "\n";
@@ -169,10 +183,19 @@ std::string probe_csv(const ProbeRequest& r) {
   const model::PanBank bank = read_checked(r.bank_path);
   const auto& h = bank.header;
   const model::PanProxy* proxy = nullptr;
-  for (const auto& p : bank.proxies)
-    if (std::abs(p.b_m - r.proxy_bc_m[0]) < 1e-9 && std::abs(p.c_m - r.proxy_bc_m[1]) < 1e-9) proxy = &p;
-  if (!proxy) throw InputError(fmt::format("{}: no proxy (B, C) = ({}, {}) in the bank (see clatter-bank info)", r.bank_path,
-                                           r.proxy_bc_m[0], r.proxy_bc_m[1]));
+  for (const auto& p : bank.proxies) {
+    if (!r.mesh_key.empty() ? p.is_mesh() && p.mesh.key.starts_with(r.mesh_key)
+                            : !p.is_mesh() && std::abs(p.b_m - r.proxy_bc_m[0]) < 1e-9 && std::abs(p.c_m - r.proxy_bc_m[1]) < 1e-9) {
+      if (proxy) throw InputError(fmt::format("{}: --mesh {} names more than one mesh entry: give more of its key", r.bank_path, r.mesh_key));
+      proxy = &p;
+    }
+  }
+  if (!proxy)
+    throw InputError(!r.mesh_key.empty()
+                         ? fmt::format("{}: no mesh entry with a key starting '{}' in the bank (see clatter-bank info)",
+                                       r.bank_path, r.mesh_key)
+                         : fmt::format("{}: no proxy (B, C) = ({}, {}) in the bank (see clatter-bank info)", r.bank_path,
+                                       r.proxy_bc_m[0], r.proxy_bc_m[1]));
   if (r.field < 1 || r.field > 6) throw InputError(fmt::format("--field {}: the bank holds fields 1-6", r.field));
   if (!proxy->solved(r.field))
     throw InputError(fmt::format("{}: field {} was not solved for this proxy", r.bank_path, r.field));

@@ -8,7 +8,7 @@
 
 namespace clatter::jobs {
 
-// A summary of the bank: proxies, fields, epsilon, sizes, provenance, the held-out checks. Throws InputError.
+// A summary of the bank: entries (proxies, meshes), fields, epsilon, sizes, provenance, the held-out checks. Throws InputError.
 std::string pan_bank_info(const std::string& path);
 
 // The bank's held-out checks (model::PanHeldOut) as issue 32's acceptance reads them: per (proxy,
@@ -21,9 +21,13 @@ std::string pan_bank_info(const std::string& path);
 inline constexpr double kExcludedEnergy = 0.01;
 std::string held_out_summary(const model::PanBank& bank, bool table);
 
+// "(B, C)" of a proxy, "mesh KEY" (its first 12 characters) of a mesh entry.
+std::string entry_label(const model::PanProxy& entry);
+
 struct ProbeRequest {
   std::string bank_path;
   std::array<double, 2> proxy_bc_m{};
+  std::string mesh_key;  // a mesh entry's key or its start; replaces proxy_bc_m when set
   int field = 1;
   std::array<double, 3> point_m{};
   double rate_hz = 0;  // 0: the bank's own rate

@@ -59,7 +59,7 @@ Series evaluate_sum(const model::PanBankHeader& bank, const model::PanProxy& pro
         accumulate(f.terms.at(static_cast<std::size_t>(w.vertex[v])), bank.values(), radial, scale * w.weight[v], c);
   }
   // Every direction was stored aligned by its support distance (fit.hpp): shift by the query's.
-  const double delay = support_delay_samples({y[0] / r, y[1] / r, y[2] / r}, bank.a_m, proxy.b_m, proxy.c_m, bank.c_m_s, bank.dt_s);
+  const double delay = support_delay_samples({y[0] / r, y[1] / r, y[2] / r}, bank.a_m, proxy, bank.c_m_s, bank.dt_s);
   const Wavelet& wavelet = cached_wavelet(bank.length);
   wavelet.inverse(c);
   const double levels_dropped = std::log2(static_cast<double>(bank.length) / static_cast<double>(n));

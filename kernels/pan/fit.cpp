@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace clatter::kernels::pan {
@@ -18,6 +19,43 @@ double support_delay_samples(const std::array<double, 3>& d, double a_m, double 
                              double dt_s) {
   const double h = std::sqrt(a_m * a_m * d[0] * d[0] + b_m * b_m * d[1] * d[1] + c_m * c_m * d[2] * d[2]);
   return h / (c_m_s * dt_s);
+}
+
+double support_delay_samples(const std::array<double, 3>& d, double a_m, double b_m, double c_m,
+                             const model::PanMeshBody& mesh, double c_m_s, double dt_s) {
+  if (mesh.key.empty()) return support_delay_samples(d, a_m, b_m, c_m, c_m_s, dt_s);
+  double h = -HUGE_VAL;
+  for (const auto& x : mesh.support_points_m) h = std::max(h, d[0] * x[0] + d[1] * x[1] + d[2] * x[2]);
+  return h / (c_m_s * dt_s);
+}
+
+double support_delay_samples(const std::array<double, 3>& d, double a_m, const model::PanProxy& entry, double c_m_s,
+                             double dt_s) {
+  return support_delay_samples(d, a_m, entry.b_m, entry.c_m, entry.mesh, c_m_s, dt_s);
+}
+
+std::vector<std::array<double, 3>> support_points(const std::vector<std::array<double, 3>>& points, int directions) {
+  std::vector<char> kept(points.size(), 0);
+  std::vector<std::array<double, 3>> out;
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (int k = 0; k < directions && !points.empty(); ++k) {
+    const double z = 1.0 - (2.0 * k + 1.0) / directions, r = std::sqrt(1.0 - z * z);
+    const std::array<double, 3> d{r * std::cos(golden * k), r * std::sin(golden * k), z};
+    std::size_t best = 0;
+    double h = -HUGE_VAL;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double s = d[0] * points[i][0] + d[1] * points[i][1] + d[2] * points[i][2];
+      if (s > h) {
+        h = s;
+        best = i;
+      }
+    }
+    if (!kept[best]) {
+      kept[best] = 1;
+      out.push_back(points[best]);
+    }
+  }
+  return out;
 }
 
 model::SparseTerms Fitter::fit(const std::vector<const float*>& series, std::size_t n_samples, double epsilon,

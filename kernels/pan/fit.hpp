@@ -45,5 +45,15 @@ class Fitter {
 // sets then agree on the time frame, and nothing about it is stored.
 double support_delay_samples(const std::array<double, 3>& direction, double a_m, double b_m, double c_m, double c_m_s,
                              double dt_s);
+// The same for a bank entry: its ellipsoid's, or for a mesh entry the support distance of its
+// support points, max_k d . x_k (the normalized mesh's convex hull).
+double support_delay_samples(const std::array<double, 3>& direction, double a_m, const model::PanProxy& entry,
+                             double c_m_s, double dt_s);
+double support_delay_samples(const std::array<double, 3>& direction, double a_m, double b_m, double c_m,
+                             const model::PanMeshBody& mesh, double c_m_s, double dt_s);
+// The vertices among `points` that are farthest along at least one of a fixed set of directions
+// (a Fibonacci sphere of `directions` points): convex-hull vertices, in first-seen order. For a
+// stored support set only the reproducibility matters: fit and evaluation use the same points.
+std::vector<std::array<double, 3>> support_points(const std::vector<std::array<double, 3>>& points, int directions = 1024);
 
 }  // namespace clatter::kernels::pan

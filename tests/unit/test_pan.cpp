@@ -467,3 +467,31 @@ TEST(PanRender, AScaledObjectFollowsEquation10) {
     for (std::size_t n = 0; n < one.size(); ++n) EXPECT_NEAR(two[n], power * one[n], 1e-9 * power * peak) << n;
   }
 }
+
+// A mesh entry's support distance (pan-object banks) against the closed form of a box: the
+// support function of [-a, a] x [-b, b] x [-c, c] is a |dx| + b |dy| + c |dz|. The points given
+// include face and edge points of the box (a 3 x 3 x 3 lattice): only the 8 corners are farthest
+// along some direction, so they alone are kept.
+TEST(PanMeshBody, SupportPointsOfABoxAreItsCornersAndGiveItsSupportFunction) {
+  const double a = 0.5, b = 0.3, c = 0.1;
+  std::vector<std::array<double, 3>> lattice;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      for (int k = -1; k <= 1; ++k) lattice.push_back({a * i, b * j, c * k});
+  clatter::model::PanProxy entry;
+  entry.mesh.key = "box";
+  entry.mesh.scale = 1;
+  entry.mesh.support_points_m = support_points(lattice);
+  ASSERT_EQ(entry.mesh.support_points_m.size(), 8u);
+  for (const auto& x : entry.mesh.support_points_m)
+    EXPECT_TRUE(std::abs(x[0]) == a && std::abs(x[1]) == b && std::abs(x[2]) == c);
+  for (const std::array<double, 3> d : {std::array<double, 3>{0.6, 0.48, 0.64}, {-0.36, 0.48, -0.8}, {0, 0, 1}, {0.8, -0.6, 0}}) {
+    const double want = (a * std::abs(d[0]) + b * std::abs(d[1]) + c * std::abs(d[2])) / (kC * kDt);
+    EXPECT_NEAR(support_delay_samples(d, 0.5, entry, kC, kDt), want, 1e-9 * want);
+  }
+  // An ellipsoid entry (no mesh key) keeps the ellipsoid's support distance.
+  entry.mesh = {};
+  entry.b_m = b;
+  entry.c_m = c;
+  EXPECT_EQ(support_delay_samples({0.6, 0.48, 0.64}, a, entry, kC, kDt), support_delay_samples({0.6, 0.48, 0.64}, a, b, c, kC, kDt));
+}
