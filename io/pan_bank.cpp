@@ -120,7 +120,9 @@ PackedCoefficients pack_coefficients(const PanBank& bank) {
   PackedCoefficients out;
   auto& [offsets, delta, quantized, scale] = out;
   for (const auto& proxy : bank.proxies) {
-    for (const auto& field : proxy.fields) {
+    for (int o = 0; o < proxy.octants(); ++o)
+    for (int f = 1; f <= 6; ++f) {
+      const model::PanField& field = proxy.field(f, o);
       const auto& set = field.directions;
       if (field.terms.size() != set.vertices.size())
         throw std::invalid_argument("PAN bank: a field's terms are not one per vertex of its direction set");
@@ -382,10 +384,12 @@ void read_held_out(const File& file, PanBank& bank) {
 void write_mesh_bodies(File& file, const std::string& group, const std::vector<std::pair<std::uint32_t, const model::PanMeshBody*>>& meshes) {
   if (meshes.empty()) return;
   create_group(file, group);
-  std::vector<std::uint32_t> entry, offsets{0};
+  std::vector<std::uint32_t> entry, offsets{0}, octants;
   std::vector<double> scale, centre, points;
   std::string keys;
   for (const auto& [e, m] : meshes) {
+    if (m->octants != 1 && m->octants != 8) throw std::invalid_argument("PAN mesh entry: octants is neither 1 nor 8");
+    octants.push_back(static_cast<std::uint32_t>(m->octants));
     if (m->key.empty() || m->key.find(' ') != std::string::npos)
       throw std::invalid_argument("PAN mesh entry: its key is empty or holds a space");
     entry.push_back(e);
@@ -398,6 +402,7 @@ void write_mesh_bodies(File& file, const std::string& group, const std::vector<s
   write_attribute(file, group, "keys", std::string_view(keys));
   write_dataset<std::uint32_t>(file, group + "/entry", entry, {entry.size()}, "1");
   write_dataset<double>(file, group + "/scale", scale, {scale.size()}, "1");
+  write_dataset<std::uint32_t>(file, group + "/octants", octants, {octants.size()}, "1");
   write_dataset<double>(file, group + "/centre_of_mass_m", centre, {entry.size(), 3}, "m");
   write_dataset<std::uint32_t>(file, group + "/support_offsets", offsets, {offsets.size()}, "1");
   write_dataset<double>(file, group + "/support_points_m", points, {points.size() / 3, 3}, "m", true);
@@ -411,6 +416,7 @@ void read_mesh_bodies(const File& file, const std::string& group, std::vector<mo
   auto entry = read_dataset<std::uint32_t>(file, group + "/entry", {-1}, "1", &n);
   const auto nm = static_cast<long long>(n[0]);
   auto scale = read_dataset<double>(file, group + "/scale", {nm}, "1");
+  auto octants = read_dataset<std::uint32_t>(file, group + "/octants", {nm}, "1");
   auto centre = read_dataset<double>(file, group + "/centre_of_mass_m", {nm, 3}, "m");
   auto offsets = read_dataset<std::uint32_t>(file, group + "/support_offsets", {nm + 1}, "1");
   auto points = read_dataset<double>(file, group + "/support_points_m", {-1, 3}, "m");
@@ -430,8 +436,12 @@ void read_mesh_bodies(const File& file, const std::string& group, std::vector<mo
       throw InputError(where + ": mesh entry " + std::to_string(k) + " has an empty key or a scale that is not positive");
     if (offsets[k] >= offsets[k + 1] || offsets[k + 1] > points.size() / 3 || (k == 0 && offsets[0] != 0))
       throw InputError(where + ": '" + group + "/support_offsets' is not a partition of the support points");
+    if (octants[k] != 1 && octants[k] != 8)
+      throw InputError(where + ": mesh entry " + std::to_string(k) + " has " + std::to_string(octants[k]) +
+                       " octants (1: mirror-symmetric, or 8)");
     model::PanMeshBody& m = *entries[entry[k]];
     m.key = keys[k];
+    m.octants = static_cast<std::int32_t>(octants[k]);
     m.scale = scale[k];
     m.centre_of_mass_m = {centre[3 * k], centre[3 * k + 1], centre[3 * k + 2]};
     for (std::uint32_t i = offsets[k]; i < offsets[k + 1]; ++i) {
@@ -495,7 +505,8 @@ void write_pan_bank(const std::string& path, const PanBank& bank, const std::str
   for (const auto& p : bank.proxies) {
     b.push_back(p.b_m);
     c.push_back(p.c_m);
-    for (const auto& f : p.fields) sets.push_back(&f.directions);
+    for (int o = 0; o < p.octants(); ++o)
+      for (int f = 1; f <= 6; ++f) sets.push_back(&p.field(f, o).directions);
   }
   write_dataset<double>(file, "/proxies/b_m", b, {b.size()}, "m");
   write_dataset<double>(file, "/proxies/c_m", c, {c.size()}, "m");
@@ -536,14 +547,19 @@ void write_pan_task(File& file, const std::string& group, const PanTaskResult& t
   // the symmetry zeros out), so a task fitted for another version is refused, not merged.
   write_attribute<std::int32_t>(file, group, "bank_format_version", kPanBankFormatVersion);
   if (!task.mesh.key.empty()) write_mesh_bodies(file, group + "/mesh", {{0u, &task.mesh}});
-  write_direction_sets(file, group + "/directions", {&task.fit.directions}, lattice);
+  std::vector<const model::PanField*> fits{&task.fit};
+  for (int o = 1; o < (task.mesh.key.empty() ? 1 : task.mesh.octants); ++o) fits.push_back(&task.other_fits.at(static_cast<std::size_t>(o - 1)));
+  std::vector<const model::PanDirections*> sets;
+  for (const auto* f : fits) sets.push_back(&f->directions);
+  write_direction_sets(file, group + "/directions", sets, lattice);
   std::vector<std::uint32_t> offsets{0}, index;
   std::vector<float> values;
-  for (const auto& d : task.fit.terms) {
-    index.insert(index.end(), d.index.begin(), d.index.end());
-    values.insert(values.end(), d.value.begin(), d.value.end());
-    offsets.push_back(static_cast<std::uint32_t>(index.size()));
-  }
+  for (const auto* f : fits)
+    for (const auto& d : f->terms) {
+      index.insert(index.end(), d.index.begin(), d.index.end());
+      values.insert(values.end(), d.value.begin(), d.value.end());
+      offsets.push_back(static_cast<std::uint32_t>(index.size()));
+    }
   write_dataset<std::uint32_t>(file, group + "/offsets", offsets, {offsets.size()}, "1", true);
   write_dataset<std::uint32_t>(file, group + "/index", index, {index.size()}, "1", true);
   write_dataset<float>(file, group + "/values", values, {index.size(), n_values}, "Pa m per unit acceleration", true);
@@ -570,26 +586,36 @@ PanTaskResult read_pan_task(const File& file, const std::string& group, const Pa
                      ", this build writes version " + std::to_string(kPanBankFormatVersion) +
                      ": rerun its task (delete the file, or start the sweep without --resume)");
   read_mesh_bodies(file, group + "/mesh", {&t.mesh});
-  t.fit.directions = read_direction_sets(file, group + "/directions", 1, header.divisions, header.lattice()).at(0);
-  const std::size_t n_directions = t.fit.directions.vertices.size(), n_values = header.values();
-  if (n_directions == 0) throw InputError(file.path() + ": '" + group + "/directions' holds no direction");
+  const int n_octants = t.mesh.key.empty() ? 1 : t.mesh.octants;
+  std::vector<model::PanField*> fits{&t.fit};
+  for (int o = 1; o < n_octants; ++o) fits.push_back(&t.other_fits.at(static_cast<std::size_t>(o - 1)));
+  auto sets = read_direction_sets(file, group + "/directions", fits.size(), header.divisions, header.lattice());
+  std::size_t n_directions = 0;
+  for (std::size_t o = 0; o < fits.size(); ++o) {
+    if (sets[o].vertices.empty()) throw InputError(file.path() + ": '" + group + "/directions' holds no direction");
+    n_directions += sets[o].vertices.size();
+    fits[o]->directions = std::move(sets[o]);
+  }
+  const std::size_t n_values = header.values();
   auto offsets = read_dataset<std::uint32_t>(file, group + "/offsets", {static_cast<long long>(n_directions) + 1}, "1");
   Dims n;
   auto index = read_dataset<std::uint32_t>(file, group + "/index", {-1}, "1", &n);
   auto values = read_dataset<float>(file, group + "/values", {static_cast<long long>(n[0]), static_cast<long long>(n_values)},
                                     "Pa m per unit acceleration");
-  for (std::size_t d = 0; d < n_directions; ++d) {
-    if (offsets[d] > offsets[d + 1] || offsets[d + 1] > index.size())
-      throw InputError(file.path() + ": '" + group + "/offsets' is not a partition of the coefficients");
-    SparseTerms terms_d;
-    for (std::uint32_t e = offsets[d]; e < offsets[d + 1]; ++e) {
-      if (index[e] >= header.length || (e > offsets[d] && index[e] <= index[e - 1]))
-        throw InputError(file.path() + ": '" + group + "/index' is out of range or not ascending");
-      terms_d.index.push_back(index[e]);
-      for (std::size_t k = 0; k < n_values; ++k) terms_d.value.push_back(values[e * n_values + k]);
+  std::size_t d = 0;
+  for (auto* fit : fits)
+    for (std::size_t v = 0; v < fit->directions.vertices.size(); ++v, ++d) {
+      if (offsets[d] > offsets[d + 1] || offsets[d + 1] > index.size())
+        throw InputError(file.path() + ": '" + group + "/offsets' is not a partition of the coefficients");
+      SparseTerms terms_d;
+      for (std::uint32_t e = offsets[d]; e < offsets[d + 1]; ++e) {
+        if (index[e] >= header.length || (e > offsets[d] && index[e] <= index[e - 1]))
+          throw InputError(file.path() + ": '" + group + "/index' is out of range or not ascending");
+        terms_d.index.push_back(index[e]);
+        for (std::size_t k = 0; k < n_values; ++k) terms_d.value.push_back(values[e * n_values + k]);
+      }
+      fit->terms.push_back(std::move(terms_d));
     }
-    t.fit.terms.push_back(std::move(terms_d));
-  }
   Dims np;
   auto points = read_dataset<double>(file, group + "/held_out_points_m", {-1, 3}, "m", &np);
   for (std::size_t k = 0; k < np[0]; ++k) t.held_out_points_m.push_back({points[3 * k], points[3 * k + 1], points[3 * k + 2]});
@@ -625,7 +651,13 @@ PanBank read_pan_bank(const std::string& path) {
   auto b = read_dataset<double>(file, "/proxies/b_m", {-1}, "m", &nb);
   auto c = read_dataset<double>(file, "/proxies/c_m", {static_cast<long long>(nb[0])}, "m");
   const std::size_t n_values = h.values(), np = b.size();
-  auto sets = read_direction_sets(file, "/directions", np * 6, h.divisions, h.lattice());
+  bank.proxies.resize(np);
+  std::vector<model::PanMeshBody*> bodies;
+  for (auto& p : bank.proxies) bodies.push_back(&p.mesh);
+  read_mesh_bodies(file, "/meshes", bodies);
+  std::size_t n_sets = 0;
+  for (const auto& p : bank.proxies) n_sets += 6 * static_cast<std::size_t>(p.octants());
+  auto sets = read_direction_sets(file, "/directions", n_sets, h.divisions, h.lattice());
   std::size_t rows = 0;
   for (const auto& s : sets) rows += s.vertices.size();
   const auto nv = static_cast<long long>(n_values), nr = static_cast<long long>(rows);
@@ -635,22 +667,20 @@ PanBank read_pan_bank(const std::string& path) {
   auto values = read_dataset<std::int16_t>(file, "/coefficients/values", {static_cast<long long>(nnz[0]), nv}, "1");
   auto scale = read_dataset<float>(file, "/coefficients/scale", {nr, nv}, "Pa m per unit acceleration");
   const PackedCoefficients packed{std::move(offsets), std::move(delta), std::move(values), std::move(scale)};
-  std::size_t row = 0;
+  std::size_t row = 0, set = 0;
   for (std::size_t p = 0; p < np; ++p) {
-    PanProxy proxy;
+    PanProxy& proxy = bank.proxies[p];
     proxy.b_m = b[p];
     proxy.c_m = c[p];
-    for (std::size_t f = 0; f < 6; ++f) {
-      proxy.fields[f].directions = std::move(sets[p * 6 + f]);
-      unpack_field(h, packed, row, proxy.fields[f],
-                   path + ": '/directions' set " + std::to_string(p * 6 + f) + " (proxy " + std::to_string(p) + ", field " +
-                       std::to_string(f + 1) + ")");
-    }
-    bank.proxies.push_back(std::move(proxy));
+    for (int o = 0; o < proxy.octants(); ++o)
+      for (int f = 1; f <= 6; ++f, ++set) {
+        model::PanField& field = proxy.field(f, o);
+        field.directions = std::move(sets[set]);
+        unpack_field(h, packed, row, field,
+                     path + ": '/directions' set " + std::to_string(set) + " (proxy " + std::to_string(p) + ", field " +
+                         std::to_string(f) + (proxy.octants() > 1 ? ", octant " + std::to_string(o) : std::string()) + ")");
+      }
   }
-  std::vector<model::PanMeshBody*> bodies;
-  for (auto& p : bank.proxies) bodies.push_back(&p.mesh);
-  read_mesh_bodies(file, "/meshes", bodies);
   read_held_out(file, bank);
   bank.sweep = read_sweep_status(file);
   return bank;

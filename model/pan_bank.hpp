@@ -88,8 +88,19 @@ struct PanMeshBody {
   // Normalized vertices of the mesh that are farthest along some direction (convex-hull vertices):
   // the support distance in direction d is max_k d . x_k (kernels/pan/fit.hpp).
   std::vector<std::array<double, 3>> support_points_m;
+  // 1: mirror-symmetric in the three planes, one octant of directions per field (eqs. 16-21 give
+  // the rest), stored over the symmetry zeros like a proxy's; 8: no such symmetry (solved in the
+  // full domain), every octant its own direction sets, the field stored as it is.
+  std::int32_t octants = 1;
   bool operator==(const PanMeshBody&) const = default;
 };
+
+// The octant of direction d: bit a set where d_a < 0 (octant 0 is x, y, z >= 0).
+inline int octant_of(const std::array<double, 3>& d) { return (d[0] < 0 ? 1 : 0) | (d[1] < 0 ? 2 : 0) | (d[2] < 0 ? 4 : 0); }
+// Direction d of the positive octant in octant o: the axes of o's bits negated.
+inline std::array<double, 3> in_octant(const std::array<double, 3>& d, int o) {
+  return {o & 1 ? -d[0] : d[0], o & 2 ? -d[1] : d[1], o & 4 ? -d[2] : d[2]};
+}
 
 // One entry of a bank and its fields 1..6: a proxy ellipsoid (A, B, C), or a mesh (`mesh`, its key
 // set; B = C = 0). Each direction's series are aligned by the body's support distance
@@ -98,10 +109,21 @@ struct PanProxy {
   double b_m = 0, c_m = 0;
   PanMeshBody mesh;
   bool is_mesh() const { return !mesh.key.empty(); }
-  std::array<PanField, 6> fields;  // fields[field - 1]
+  std::array<PanField, 6> fields;  // fields[field - 1]: the positive octant's sets
+  // An entry of 8 octants (mesh.octants): octant o = 1..7's sets at other_octants[o - 1]; empty
+  // otherwise.
+  std::array<std::array<PanField, 6>, 7> other_octants;
   std::array<PanHeldOut, 6> held_out;
 
-  const PanField& field(int f) const { return fields.at(static_cast<std::size_t>(f - 1)); }
+  int octants() const { return is_mesh() ? mesh.octants : 1; }
+  const PanField& field(int f, int octant = 0) const {
+    return octant == 0 ? fields.at(static_cast<std::size_t>(f - 1))
+                       : other_octants.at(static_cast<std::size_t>(octant - 1)).at(static_cast<std::size_t>(f - 1));
+  }
+  PanField& field(int f, int octant = 0) {
+    return octant == 0 ? fields.at(static_cast<std::size_t>(f - 1))
+                       : other_octants.at(static_cast<std::size_t>(octant - 1)).at(static_cast<std::size_t>(f - 1));
+  }
   bool solved(int f) const { return field(f).solved(); }
 };
 
@@ -118,6 +140,7 @@ struct PanTaskResult {
   PanMeshBody mesh;         // a mesh entry's body (key empty for an ellipsoid)
   int field = 0;
   PanField fit;
+  std::array<PanField, 7> other_fits;  // an 8-octant entry's octants 1..7 (mesh.octants)
   // The raw field at the held-out points, for the check at the merge (which codes the bank, so a
   // bank merged again with another coding is checked as it is): [point][sample], the solve's samples.
   std::vector<std::array<double, 3>> held_out_points_m;

@@ -25,7 +25,7 @@ model::PanHeldOut check_held_out(const PanSpec& spec, const model::PanBankHeader
   stored.b_m = built.b_m;
   stored.c_m = built.c_m;
   stored.mesh = built.mesh;
-  stored.fields[static_cast<std::size_t>(field - 1)] = io::stored_field(header, built.field(field));
+  for (int o = 0; o < built.octants(); ++o) stored.field(field, o) = io::stored_field(header, built.field(field, o));
   const std::size_t ns = static_cast<std::size_t>(spec.solve.n_samples);
   model::PanHeldOut out;
   for (std::size_t l = 0; l < points.size(); ++l) {
@@ -41,7 +41,7 @@ model::PanHeldOut check_held_out(const PanSpec& spec, const model::PanBankHeader
 
 TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s) {
   PanSpec one = spec;
-  one.solve.fields = {task.field};
+  one.solve.fields = one.solve_full.fields = {task.field};
   const auto points = held_out_points(spec, task.proxy);
   auto result = build_proxy(group, one, task.proxy, points, progress_interval_s);
   if (mpi::rank(group) != 0) return {};
@@ -54,7 +54,8 @@ TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task
   r.field = task.field;
   r.held_out_points_m = points;
   r.held_out_raw = std::move(result.extra_series.at(0));
-  r.fit = std::move(result.proxy.fields[static_cast<std::size_t>(task.field - 1)]);
+  r.fit = std::move(result.proxy.field(task.field));
+  for (int o = 1; o < result.proxy.octants(); ++o) r.other_fits[static_cast<std::size_t>(o - 1)] = std::move(result.proxy.field(task.field, o));
   return [r = std::move(r), header](io::File& file, const std::string& group_name) {
     io::write_pan_task(file, group_name, r, header.lattice(), header.values());
   };
@@ -78,16 +79,19 @@ model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results
     if (r.mesh != bank.proxies[t.proxy].mesh)
       throw InputError(fmt::format("{}: was solved around another body than {} (its mesh key '{}', scale {})", file.path(),
                                    spec.bodies[t.proxy].label(), r.mesh.key, r.mesh.scale));
-    try {  // the replay io cannot do (kernels/pan/direction_mesh.hpp)
-      if (pan::DirectionMesh(bank.header.divisions, bank.header.max_levels, r.fit.directions).size() != r.fit.terms.size())
-        throw std::invalid_argument("not one set of terms per direction");
-    } catch (const std::invalid_argument& e) {
-      throw InputError(fmt::format("{}: its direction set is not a refinement of the octant with fit.divisions = {} "
-                                   "and fit.direction_levels = {}: {}", file.path(), spec.divisions, spec.direction_levels,
-                                   e.what()));
-    }
     auto& proxy = bank.proxies[t.proxy];
-    proxy.fields[static_cast<std::size_t>(t.field - 1)] = std::move(r.fit);
+    for (int o = 0; o < proxy.octants(); ++o) {
+      model::PanField& fit = o == 0 ? r.fit : r.other_fits[static_cast<std::size_t>(o - 1)];
+      try {  // the replay io cannot do (kernels/pan/direction_mesh.hpp)
+        if (pan::DirectionMesh(bank.header.divisions, bank.header.max_levels, fit.directions).size() != fit.terms.size())
+          throw std::invalid_argument("not one set of terms per direction");
+      } catch (const std::invalid_argument& e) {
+        throw InputError(fmt::format("{}: its direction set{} is not a refinement of the octant with fit.divisions = {} "
+                                     "and fit.direction_levels = {}: {}", file.path(), o > 0 ? fmt::format(" of octant {}", o) : "",
+                                     spec.divisions, spec.direction_levels, e.what()));
+      }
+      proxy.field(t.field, o) = std::move(fit);
+    }
     if (r.held_out_points_m != held_out_points(spec, t.proxy) ||
         r.held_out_raw.size() != r.held_out_points_m.size() * static_cast<std::size_t>(spec.solve.n_samples))
       throw InputError(fmt::format("{}: its held-out points or series are not this config's (check.held_out_*)", file.path()));
@@ -147,10 +151,15 @@ void add_strength(FarFieldStrength& s, double l2) {
 ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                         const std::vector<std::array<double, 3>>& extra_listeners_m, double progress_interval_s) {
   namespace fdtd = kernels::fdtd;
-  SolveSpec s = spec.solve;
   const PanBody& body = spec.bodies[proxy];
+  SolveSpec s = body.shape.octants == 8 ? spec.solve_full : spec.solve;  // no mirror symmetry: the full domain
   s.problem.body = {spec.a_m, body.b_m, body.c_m};
-  s.problem.mesh = body.mesh;  // a mesh entry's (normalized, mirror-symmetric: the octant solve holds)
+  s.problem.mesh = body.mesh;  // a mesh entry's, normalized
+  if (body.mesh) {             // for the solve's log
+    s.mesh_path = body.source;
+    s.mesh_hash = body.shape.key;
+    s.mesh_scale = body.shape.scale;
+  }
   // make_pan_spec checked the radii; the extra listeners are new, heard through the Kirchhoff
   // surface like them, anywhere outside it.
   for (std::size_t l = 0; l < extra_listeners_m.size(); ++l)
@@ -177,40 +186,58 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   // Rank 0, per field, while its surface is alive: the field's direction set (refined where the
   // far field asks for it), then every direction heard at its radii and at infinity, aligned by its
   // support distance (the whole steps in the fit, the fraction here).
+  const int octants = body.shape.octants;
   auto hear = [&](std::size_t fi, const fdtd::SurfaceField& surface) {
     const int f = s.fields[fi];
+    // An entry of eight octants: field 3's strength over all of them, an octant's mean.
+    auto strength_of_3 = [&] {
+      FarFieldStrength mean;
+      for (int o = 0; o < octants; ++o) {
+        const FarFieldStrength one = layout_strength(spec, proxy, surface, o);
+        mean.strongest_l2 = std::max(mean.strongest_l2, one.strongest_l2);
+        mean.energy += one.energy / octants;
+      }
+      return mean;
+    };
     if (yardstick && f == 3 && !store_3) {
-      field_3 = layout_strength(spec, proxy, surface);
+      field_3 = strength_of_3();
       return;
     }
-    auto& field = out.proxy.fields[static_cast<std::size_t>(f - 1)];
     // A rotation field per unit angular acceleration moves the surface by up to A.
     const double per_unit = f <= 3 ? 1.0 : spec.a_m;
-    const DirectionRefinement set =
-        spec.direction_tolerance > 0
-            ? refine_directions(spec, proxy, surface, spec.direction_tolerance, spec.direction_levels, spec.max_directions,
-                                per_unit * per_unit * field_3.energy)
-            : DirectionRefinement{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, {}};
-    if (f == 3) field_3 = set.strength;
     std::vector<std::vector<float>> near(m, std::vector<float>(ns));
     std::vector<const float*> series;
     for (const auto& v : near) series.push_back(v.data());
-    for (std::size_t v = 0; v < set.mesh.size(); ++v) {
-      // Stored over the field's symmetry zeros (kernels/pan/directions.hpp), heard off the planes.
-      const auto d = pan::off_planes(f, set.mesh.direction(v));
-      const double zeros = pan::symmetry_zeros(f, d);
-      const Alignment a = alignment(spec, proxy, d);
-      for (std::size_t i = 0; i < m; ++i) {
-        const double r = spec.radii_m[i];
-        const auto p = fdtd::pressure_at(surface, {r * d[0], r * d[1], r * d[2]}, a.advance_s);
-        for (std::size_t k = 0; k < ns; ++k) near[i][k] = static_cast<float>(p.value[k] / zeros);
+    FarFieldStrength strength_3;
+    for (int o = 0; o < octants; ++o) {
+      auto& field = out.proxy.field(f, o);
+      const DirectionRefinement set =
+          spec.direction_tolerance > 0
+              ? refine_directions(spec, proxy, surface, spec.direction_tolerance, spec.direction_levels, spec.max_directions,
+                                  per_unit * per_unit * field_3.energy, o)
+              : DirectionRefinement{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, {}};
+      strength_3.strongest_l2 = std::max(strength_3.strongest_l2, set.strength.strongest_l2);
+      strength_3.energy += set.strength.energy / octants;
+      for (std::size_t v = 0; v < set.mesh.size(); ++v) {
+        // Stored over the field's symmetry zeros (kernels/pan/directions.hpp), heard off the planes;
+        // an entry of eight octants as it is, in the octant's own direction.
+        const auto d = heard_direction(spec, proxy, f, o, set.mesh.direction(v));
+        const double zeros = octants == 8 ? 1.0 : pan::symmetry_zeros(f, d);
+        const Alignment a = alignment(spec, proxy, d);
+        for (std::size_t i = 0; i < m; ++i) {
+          const double r = spec.radii_m[i];
+          const auto p = fdtd::pressure_at(surface, {r * d[0], r * d[1], r * d[2]}, a.advance_s);
+          for (std::size_t k = 0; k < ns; ++k) near[i][k] = static_cast<float>(p.value[k] / zeros);
+        }
+        const auto heard = set.far_fields.find(pan::lattice_key(set.mesh.vertices()[v]));
+        field.terms.push_back(fitter.fit(series, ns, spec.epsilon, a.whole_steps,
+                                         heard != set.far_fields.end()
+                                             ? heard->second
+                                             : stored_far_field(spec, proxy, surface, set.mesh.direction(v), o)));
       }
-      const auto heard = set.far_fields.find(pan::lattice_key(set.mesh.vertices()[v]));
-      field.terms.push_back(fitter.fit(series, ns, spec.epsilon, a.whole_steps,
-                                       heard != set.far_fields.end() ? heard->second
-                                                                     : stored_far_field(spec, proxy, surface, set.mesh.direction(v))));
+      field.directions = set.mesh.stored();
     }
-    field.directions = set.mesh.stored();
+    if (f == 3) field_3 = strength_3;
     std::vector<float> extra(extra_listeners_m.size() * ns);
     for (std::size_t l = 0; l < extra_listeners_m.size(); ++l) {
       const auto p = fdtd::pressure_at(surface, extra_listeners_m[l]);
@@ -230,18 +257,26 @@ std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, co
   return frame_far_field(spec, kernels::fdtd::far_field(surface, d, a.advance_s), a.whole_steps);
 }
 
+std::array<double, 3> heard_direction(const PanSpec& spec, std::size_t proxy, int field, int octant,
+                                      const std::array<double, 3>& d) {
+  return spec.bodies[proxy].shape.octants == 8 ? model::in_octant(d, octant) : pan::off_planes(field, d);
+}
+
 std::vector<double> stored_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
-                                     const std::array<double, 3>& d) {
-  const auto heard = pan::off_planes(surface.field, d);
+                                     const std::array<double, 3>& d, int octant) {
+  const auto heard = heard_direction(spec, proxy, surface.field, octant, d);
   auto q = aligned_far_field(spec, proxy, surface, heard);
+  if (spec.bodies[proxy].shape.octants == 8) return q;
   const double zeros = pan::symmetry_zeros(surface.field, heard);
   for (double& x : q) x /= zeros;
   return q;
 }
 
-FarFieldStrength layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface) {
+FarFieldStrength layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
+                                 int octant) {
   FarFieldStrength s;
-  for (const auto& d : pan::direction_vertices(spec.divisions)) add_strength(s, l2(aligned_far_field(spec, proxy, surface, d)));
+  for (const auto& d : pan::direction_vertices(spec.divisions))
+    add_strength(s, l2(aligned_far_field(spec, proxy, surface, model::in_octant(d, octant))));
   return s;
 }
 
@@ -260,13 +295,13 @@ double far_field_miss(const std::vector<double>& interpolated, const std::vector
 
 DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                       double tolerance, int max_levels, std::size_t max_vertices,
-                                      double yardstick_energy) {
+                                      double yardstick_energy, int octant) {
   DirectionRefinement out{pan::uniform_mesh(spec.divisions, max_levels), 0, {}, {}};
   auto& mesh = out.mesh;
   auto at = [&](const pan::LatticePoint& p) -> const std::vector<double>& {
     auto it = out.far_fields.find(pan::lattice_key(p));
     if (it == out.far_fields.end())
-      it = out.far_fields.emplace(pan::lattice_key(p), stored_far_field(spec, proxy, surface, mesh.direction(p))).first;
+      it = out.far_fields.emplace(pan::lattice_key(p), stored_far_field(spec, proxy, surface, mesh.direction(p), octant)).first;
     return it->second;
   };
   // The unrefined mesh is the layout: the field's strength there (of p = q x its symmetry zeros),
@@ -275,7 +310,7 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
   for (const auto& v : mesh.vertices()) {
     const double q = l2(at(v));
     strongest_q = std::max(strongest_q, q);
-    add_strength(out.strength, q * pan::symmetry_zeros(surface.field, mesh.direction(v)));
+    add_strength(out.strength, spec.bodies[proxy].shape.octants == 8 ? q : q * pan::symmetry_zeros(surface.field, mesh.direction(v)));
   }
   // Not radiated: numerical noise, left at the layout.
   if (out.strength.energy < kRadiatedEnergy * yardstick_energy) return out;

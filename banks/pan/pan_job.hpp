@@ -38,8 +38,14 @@ std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, co
 
 // What a bank stores for direction d: the aligned far field over the field's symmetry zeros (q,
 // kernels/pan/directions.hpp symmetry_zeros), heard off the planes where they vanish.
+// An entry of eight octants stores every octant's field as it is: `octant` mirrors d (a direction
+// of the positive octant) into it, and nothing is divided.
 std::vector<double> stored_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
-                                     const std::array<double, 3>& d);
+                                     const std::array<double, 3>& d, int octant = 0);
+// Where a stored direction d (of the positive octant) is heard: off the field's planes
+// (kernels/pan/directions.hpp off_planes), or for an entry of eight octants d in `octant`.
+std::array<double, 3> heard_direction(const PanSpec& spec, std::size_t proxy, int field, int octant,
+                                      const std::array<double, 3>& d);
 
 // A field's strength over the layout's directions: its strongest far field (L2 over time) and
 // their energy (the sum of squares, the layout's directions spanning about equal solid angles).
@@ -47,7 +53,8 @@ struct FarFieldStrength {
   double strongest_l2 = 0;
   double energy = 0;
 };
-FarFieldStrength layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface);
+FarFieldStrength layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
+                                 int octant = 0);
 
 // A field's adaptive direction set (the bank's, with fit.direction_tolerance): the layout of
 // spec.divisions split where quadratic interpolation of the far field misses it at a split point
@@ -71,7 +78,7 @@ struct DirectionRefinement {
 inline constexpr double kRadiatedEnergy = 0.0025;
 DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                       double tolerance, int max_levels, std::size_t max_vertices,
-                                      double yardstick_energy = 0);
+                                      double yardstick_energy = 0, int octant = 0);
 // The miss measure of refine_directions: |interpolated - truth| / max(|truth|, floor), L2 over time.
 double far_field_miss(const std::vector<double>& interpolated, const std::vector<double>& truth, double floor);
 // A tenth of the strongest far field (L2) among the layout's directions, 1 % of its energy.

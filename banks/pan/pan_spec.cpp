@@ -88,9 +88,14 @@ const io::Schema& pan_object_schema() {
       if (!proxy_grid_key(key.name)) s.keys.push_back(key);
     s.keys.push_back({"objects.meshes", io::StringList{}, "closed, consistently oriented triangle meshes (OBJ, metres), "
                                                           "one entry each, keyed by io::mesh_hash; each is moved to its "
-                                                          "centre of mass and scaled to bounding radius proxies.a_m, and "
-                                                          "must be mirror-symmetric in the planes through it (one octant "
-                                                          "of directions per field, as a proxy's)"});
+                                                          "centre of mass and scaled to bounding radius proxies.a_m; one "
+                                                          "mirror-symmetric in the planes through it is solved in the "
+                                                          "octant (one octant of directions per field, as a proxy), any "
+                                                          "other in the full domain (8x the cells, eight octants of "
+                                                          "directions)"});
+    s.keys.push_back({"objects.all_octants", false, "solve every mesh in the full domain with eight octants of "
+                                                    "directions, a mirror-symmetric one too (8x the cells and series: "
+                                                    "a check of the symmetry)"});
     return s;
   }();
   return schema;
@@ -138,6 +143,7 @@ PanParams parse_pan_object_params(const io::Config& config) {
   PanParams p;
   parse_shared_params(config, p);
   p.objects_meshes = config.strings("objects.meshes");
+  p.objects_all_octants = config.boolean("objects.all_octants");
   if (p.objects_meshes.empty()) throw InputError("config: key 'objects.meshes' is empty: a pan-object bank needs at least one mesh");
   return p;
 }
@@ -215,7 +221,7 @@ std::string PanBody::label() const {
 namespace {
 
 // Entry i of objects.meshes: read, moved to its centre of mass, scaled to bounding radius a_m.
-PanBody mesh_body(const std::string& path, std::size_t i, double a_m) {
+PanBody mesh_body(const std::string& path, std::size_t i, double a_m, bool all_octants) {
   auto bad = [&](const std::string& why) {
     return InputError(fmt::format("config: key 'objects.meshes' entry {} = '{}': {}", i + 1, path, why));
   };
@@ -238,14 +244,8 @@ PanBody mesh_body(const std::string& path, std::size_t i, double a_m) {
   } catch (const std::invalid_argument& e) {
     throw bad(e.what());
   }
-  if (!body.mesh->mirror_symmetric())
-    throw bad(fmt::format("not mirror-symmetric in the planes x = 0, y = 0, z = 0 through its centre of mass ({}); a "
-                          "pan-object bank stores one octant of directions per field, as a proxy's, so it holds "
-                          "mirror-symmetric meshes only (their own axes as given)",
-                          std::isfinite(body.mesh->mirror_mismatch())
-                              ? fmt::format("sampled lines differ from their mirror images by {:.3g} of its radius",
-                                            body.mesh->mirror_mismatch())
-                              : std::string("a sampled line and its mirror image cross it a different number of times")));
+  // Without mirror symmetry in its own axes: the full domain, every octant its own directions.
+  body.shape.octants = body.mesh->mirror_symmetric() && !all_octants ? 1 : 8;
   body.shape.support_points_m = pan::support_points(body.mesh->vertices_m());
   return body;
 }
@@ -254,7 +254,7 @@ std::vector<PanBody> bodies(const PanParams& in) {
   std::vector<PanBody> out;
   if (!in.objects_meshes.empty()) {
     for (std::size_t i = 0; i < in.objects_meshes.size(); ++i) {
-      out.push_back(mesh_body(in.objects_meshes[i], i, in.proxies_a_m));
+      out.push_back(mesh_body(in.objects_meshes[i], i, in.proxies_a_m, in.objects_all_octants));
       for (std::size_t j = 0; j + 1 < out.size(); ++j)
         if (out[j].shape.key == out.back().shape.key)
           throw InputError(fmt::format("config: key 'objects.meshes' entry {} = '{}': the same mesh as entry {} ('{}')",
@@ -305,7 +305,13 @@ PanSpec make_pan_spec(const PanParams& in) {
     spec.radii_m.push_back(k * c_m_s * dt);
   }
   spec.solve = make_solve_spec(proxy_solve_params(in, spec));  // CFL, domain and listener checks
-  spec.solve.kirchhoff_radius_m = kirchhoff_radius_m(spec, dx);
+  spec.solve_full = spec.solve;
+  if (std::any_of(spec.bodies.begin(), spec.bodies.end(), [](const PanBody& b) { return b.shape.octants == 8; })) {
+    SolveParams full = proxy_solve_params(in, spec);
+    full.grid_octant = false;
+    spec.solve_full = make_solve_spec(full);
+  }
+  spec.solve.kirchhoff_radius_m = spec.solve_full.kirchhoff_radius_m = kirchhoff_radius_m(spec, dx);
   for (std::size_t i = 0; i < spec.radii_m.size(); ++i)  // every direction alike: the check along x
     if (auto why = surface_listener_problem(spec.solve, {spec.radii_m[i], 0.0, 0.0}))
       throw InputError(fmt::format("config: key 'fit.radii_m' has {}: {}", in.fit_radii_m[i], *why));
@@ -357,9 +363,12 @@ std::vector<std::array<double, 3>> held_out_points(const PanSpec& spec, std::siz
   std::mt19937 rng(static_cast<std::uint32_t>(proxy) + 1);
   auto uniform = [&] { return (static_cast<double>(rng()) + 0.5) / 4294967296.0; };
   auto normal = [&] { return std::sqrt(-2 * std::log(uniform())) * std::cos(2 * std::numbers::pi * uniform()); };
+  // An entry of eight octants is checked over the sphere: the normals keep their signs.
+  const bool sphere = spec.bodies.at(proxy).shape.octants == 8;
+  auto component = [&] { const double x = normal(); return sphere ? x : std::abs(x); };
   std::vector<std::array<double, 3>> out;
   for (int i = 0; i < spec.held_out_directions; ++i) {
-    std::array<double, 3> d{std::abs(normal()), std::abs(normal()), std::abs(normal())};
+    std::array<double, 3> d{component(), component(), component()};
     const double n = std::hypot(d[0], d[1], d[2]);
     for (double r : spec.held_out_radii_m) out.push_back({r * d[0] / n, r * d[1] / n, r * d[2] / n});
   }

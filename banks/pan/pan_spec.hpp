@@ -36,6 +36,9 @@ struct PanSpec {
   // One entry's solve, body set per entry; its Kirchhoff surface hears the directions x radii and
   // the far fields (build_proxy, through run_solve's SurfaceHook).
   SolveSpec solve;
+  // The full-domain solve (grid.octant = false) of a mesh entry without mirror symmetry, when the
+  // spec has one; otherwise the same as `solve`.
+  SolveSpec solve_full;
   std::vector<PanBody> bodies;  // the proxies (B, C), or pan-object's meshes
   double a_m = 0.5;
   std::vector<double> radii_m;         // ascending, whole numbers of steps: shift[i] * c * dt
@@ -66,6 +69,7 @@ struct PanParams {
   double proxies_a_m = 0, proxies_grid_min_m = 0, proxies_grid_step_m = 0;
   std::vector<std::array<double, 2>> proxies_list_m;  // (B, C); when given, replaces the grid
   std::vector<std::string> objects_meshes;            // pan-object: the OBJ files (then no proxies)
+  bool objects_all_octants = false;                   // pan-object: every mesh in the full domain, eight octants
   double grid_dx_m = 0;
   int grid_pml_cells = 0;
   double time_dt_s = 0, time_tail_s = 0;

@@ -121,7 +121,9 @@ std::string pan_bank_info(const std::string& path) {
   auto run = [&](const char* key) { return io::read_string_attribute(file, "/provenance/run", key); };
   std::size_t kept = 0, directions = 0, fields = 0, fewest = SIZE_MAX, most = 0;
   for (const auto& p : bank.proxies)
-    for (const auto& f : p.fields) {
+    for (int o = 0; o < p.octants(); ++o)
+    for (int field = 1; field <= 6; ++field) {
+      const model::PanField& f = p.field(field, o);
       if (!f.solved()) continue;
       for (const auto& d : f.terms) kept += d.index.size();
       ++fields;
@@ -144,15 +146,17 @@ std::string pan_bank_info(const std::string& path) {
   for (const auto& p : bank.proxies)
     if (p.is_mesh())
       out += fmt::format("  mesh:        {}: scaled by {:.6g} to bounding radius A about its centre of mass ({:.6g}, "
-                         "{:.6g}, {:.6g}) m (the mesh as given: --scale {:.6g}); {} support points\n",
+                         "{:.6g}, {:.6g}) m (the mesh as given: --scale {:.6g}); {} support points; {}\n",
                          p.mesh.key, p.mesh.scale, p.mesh.centre_of_mass_m[0], p.mesh.centre_of_mass_m[1],
-                         p.mesh.centre_of_mass_m[2], 1.0 / p.mesh.scale, p.mesh.support_points_m.size());
+                         p.mesh.centre_of_mass_m[2], 1.0 / p.mesh.scale, p.mesh.support_points_m.size(),
+                         p.octants() == 8 ? "eight octants of directions (full-domain solve)"
+                                          : "mirror-symmetric: one octant of directions");
   out += fmt::format("  medium:      c = {} m/s, rho = {} kg/m^3; pulse h = {} s; t = 0 at the centre of psi\n", h.c_m_s,
                      h.rho_kg_m3, h.h_s);
   out += fmt::format("  sampling:    {:.6g} Hz, wavelet length {} (Daubechies 10)\n", 1.0 / h.dt_s, h.length);
   std::string radii;
   for (double r : h.radii_m) radii += fmt::format(" {:.4g}", r);
-  out += fmt::format("  directions:  per field {} to {} ({:.1f} on average over {} fields): the octant cut in {}, split "
+  out += fmt::format("  directions:  per field and octant {} to {} ({:.1f} on average over {} sets): the octant cut in {}, split "
                      "up to {} times (lattice {})\n", fields ? fewest : 0, most,
                      fields ? static_cast<double>(directions) / static_cast<double>(fields) : 0.0, fields, h.divisions,
                      h.max_levels, h.lattice());

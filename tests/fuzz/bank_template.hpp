@@ -55,6 +55,13 @@ inline model::PanBank template_bank() {
     for (int f : {0, 2}) proxy.fields[static_cast<std::size_t>(f)] = template_field((f == 0) == (p == 0));
     bank.proxies.push_back(proxy);
   }
+  model::PanProxy mesh;  // a mesh entry (pan-object): /meshes
+  mesh.mesh.key = "8da2256c9343da99";
+  mesh.mesh.scale = 41.5;
+  mesh.mesh.centre_of_mass_m = {0, 0, 0.001};
+  mesh.mesh.support_points_m = {{0.5, 0, 0.04}, {0, 0.5, -0.04}, {-0.5, 0, 0.04}};
+  mesh.fields[2] = template_field(true);
+  bank.proxies.push_back(mesh);
   bank.sweep.sweep_id = "0123456789abcdef";
   bank.sweep.tasks_total = 12;
   bank.sweep.missing = {"p001-f2"};

@@ -27,8 +27,11 @@ void check(const model::PanBank& bank) {
     if (!(h.radii_m[i] > 0) || (i > 0 && !(h.radii_m[i] > h.radii_m[i - 1]))) fuzz::broken("radii not positive ascending");
   if (h.divisions < 2 || h.divisions % 2 != 0 || h.max_levels < 0 || h.max_levels > 16 || h.divisions > (1 << 20) >> h.max_levels)
     fuzz::broken("layout or lattice out of range");
-  for (const auto& p : bank.proxies)
+  for (const auto& p : bank.proxies) {
     for (const auto& field : p.fields) fuzz::check_field(field, h.divisions, h.lattice(), h.values(), h.length);
+    if (p.is_mesh() && (p.mesh.support_points_m.empty() || !(p.mesh.scale > 0)))  // the support distance needs a point
+      fuzz::broken("a mesh entry without support points or scale");
+  }
 }
 
 }  // namespace
