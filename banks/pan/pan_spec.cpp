@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "io/mesh.hpp"
+#include "io/scene.hpp"
 #include "banks/medium_keys.hpp"
 #include "kernels/fdtd/mesh_body.hpp"
 #include "kernels/fdtd/problem.hpp"
@@ -93,6 +94,8 @@ const io::Schema& pan_object_schema() {
                                                           "octant (one octant of directions per field, as a proxy), any "
                                                           "other in the full domain (8x the cells, eight octants of "
                                                           "directions)"});
+    s.keys.push_back({"objects.scene", std::string(""), "a scene (docs/scene-format.md): every object given by a mesh "
+                                                        "too, each mesh once (debris shares meshes)"});
     s.keys.push_back({"objects.all_octants", false, "solve every mesh in the full domain with eight octants of "
                                                     "directions, a mirror-symmetric one too (8x the cells and series: "
                                                     "a check of the symmetry)"});
@@ -143,8 +146,10 @@ PanParams parse_pan_object_params(const io::Config& config) {
   PanParams p;
   parse_shared_params(config, p);
   p.objects_meshes = config.strings("objects.meshes");
+  p.objects_scene = config.string("objects.scene");
   p.objects_all_octants = config.boolean("objects.all_octants");
-  if (p.objects_meshes.empty()) throw InputError("config: key 'objects.meshes' is empty: a pan-object bank needs at least one mesh");
+  if (p.objects_meshes.empty() && p.objects_scene.empty())
+    throw InputError("config: key 'objects.meshes' is empty and no objects.scene: a pan-object bank needs at least one mesh");
   return p;
 }
 
@@ -220,11 +225,10 @@ std::string PanBody::label() const {
 
 namespace {
 
-// Entry i of objects.meshes: read, moved to its centre of mass, scaled to bounding radius a_m.
-PanBody mesh_body(const std::string& path, std::size_t i, double a_m, bool all_octants) {
-  auto bad = [&](const std::string& why) {
-    return InputError(fmt::format("config: key 'objects.meshes' entry {} = '{}': {}", i + 1, path, why));
-  };
+// A mesh entry: read, moved to its centre of mass, scaled to bounding radius a_m. `where` names it
+// in messages ("config: key 'objects.meshes' entry 1 = 'x.obj'").
+PanBody mesh_body(const std::string& path, const std::string& where, double a_m, bool all_octants) {
+  auto bad = [&](const std::string& why) { return InputError(fmt::format("{}: {}", where, why)); };
   io::TriangleMesh mesh;
   try {
     mesh = io::read_obj(path);
@@ -252,13 +256,32 @@ PanBody mesh_body(const std::string& path, std::size_t i, double a_m, bool all_o
 
 std::vector<PanBody> bodies(const PanParams& in) {
   std::vector<PanBody> out;
-  if (!in.objects_meshes.empty()) {
+  if (!in.objects_meshes.empty() || !in.objects_scene.empty()) {
+    auto known = [&](const PanBody& b) {
+      return std::find_if(out.begin(), out.end(), [&](const PanBody& o) { return o.shape.key == b.shape.key; });
+    };
     for (std::size_t i = 0; i < in.objects_meshes.size(); ++i) {
-      out.push_back(mesh_body(in.objects_meshes[i], i, in.proxies_a_m, in.objects_all_octants));
-      for (std::size_t j = 0; j + 1 < out.size(); ++j)
-        if (out[j].shape.key == out.back().shape.key)
-          throw InputError(fmt::format("config: key 'objects.meshes' entry {} = '{}': the same mesh as entry {} ('{}')",
-                                       i + 1, in.objects_meshes[i], j + 1, in.objects_meshes[j]));
+      PanBody b = mesh_body(in.objects_meshes[i], fmt::format("config: key 'objects.meshes' entry {} = '{}'", i + 1,
+                                                              in.objects_meshes[i]),
+                            in.proxies_a_m, in.objects_all_octants);
+      if (const auto it = known(b); it != out.end())
+        throw InputError(fmt::format("config: key 'objects.meshes' entry {} = '{}': the same mesh as entry {} ('{}')",
+                                     i + 1, in.objects_meshes[i], it - out.begin() + 1, it->source));
+      out.push_back(std::move(b));
+    }
+    if (!in.objects_scene.empty()) {
+      const io::Scene scene = io::read_scene(in.objects_scene, false);
+      std::size_t with_mesh = 0;
+      for (const io::SceneObject& o : scene.objects) {
+        if (o.mesh_path.empty()) continue;
+        ++with_mesh;
+        PanBody b = mesh_body(o.mesh_path, fmt::format("{}: mesh '{}'", o.where, o.mesh_path), in.proxies_a_m,
+                              in.objects_all_octants);
+        if (known(b) == out.end()) out.push_back(std::move(b));
+      }
+      if (with_mesh == 0 && out.empty())
+        throw InputError(fmt::format("config: key 'objects.scene' = '{}': none of its {} objects is given by a mesh",
+                                     in.objects_scene, scene.objects.size()));
     }
     return out;
   }

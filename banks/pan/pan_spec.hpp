@@ -69,6 +69,7 @@ struct PanParams {
   double proxies_a_m = 0, proxies_grid_min_m = 0, proxies_grid_step_m = 0;
   std::vector<std::array<double, 2>> proxies_list_m;  // (B, C); when given, replaces the grid
   std::vector<std::string> objects_meshes;            // pan-object: the OBJ files (then no proxies)
+  std::string objects_scene;                          // pan-object: a scene whose mesh objects are entries too
   bool objects_all_octants = false;                   // pan-object: every mesh in the full domain, eight octants
   double grid_dx_m = 0;
   int grid_pml_cells = 0;

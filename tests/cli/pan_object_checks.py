@@ -5,7 +5,8 @@ resolution on 2 ranks, field 3; then what the bank says of it, checked against t
 here (independent of the code): its normalization (scale = A / the largest vertex distance from
 the centre of mass, which symmetry puts at the box's centre), the key's length, `info`'s lines, `probe`
 by the key's start at the mesh's own size (--scale 1/scale) and the held-out summary the sweep
-logged. Usage: pan_object_checks.py BIN_DIR MPIEXEC WORKDIR"""
+logged; then a scene's mesh objects (objects.scene), each mesh once. Usage: pan_object_checks.py
+BIN_DIR MPIEXEC WORKDIR"""
 import math, os, shutil, subprocess, sys
 
 import h5py
@@ -69,6 +70,30 @@ peak = max(abs(float(l.split(",")[1])) for l in rows[1:]) if len(rows) > 1 else 
 check(peak > 0, f"probe's series is not silent (peak {peak:.3g} Pa per m/s^2)")
 wrong = run(f"{bin_dir}/clatter-bank", "probe", "coin.h5", "--mesh", "zz", "--field", "3", "--point", "0,0,1.2")
 check(wrong.returncode == 2 and "no mesh entry with a key starting 'zz'" in wrong.stderr, "probe --mesh of an unknown key: exit 2, named")
+
+# A scene's objects (objects.scene): two coins of one mesh and a rock given by numbers make one
+# entry, the same key; refused before any solve when the scene has no mesh at all (a plan-free check:
+# --print-config would not read the scene, so a run that fails on input is used).
+scene = {"format": "clatter-scene", "format_version": 1,
+         "materials": {"steel": {"youngs_modulus_pa": 2e11, "poisson_ratio": 0.3}}, "ground_material": "steel",
+         "objects": [{"id": 1, "mesh": "coin.obj", "density_kg_m3": 7800, "material": "steel"},
+                     {"id": 2, "mesh": "coin.obj", "density_kg_m3": 7800, "material": "steel"},
+                     {"id": 3, "mass_kg": 0.1, "volume_m3": 4e-5, "inertia_kg_m2": [[1e-5, 0, 0], [0, 1e-5, 0], [0, 0, 1e-5]],
+                      "material": "steel"}],
+         "events": [], "listeners": [{"position_m": [0, 0, 1]}], "duration_s": 0.1}
+import json
+json.dump(scene, open("coins.json", "w"))
+r = run(mpiexec, "-n", "2", f"{bin_dir}/clatter-bank", "pan-object", *demo[:-1], "--set=objects.scene=coins.json", "-o", "scene.h5",
+        "--progress-interval", "0")
+check(r.returncode == 0 and "1 meshes x 1 fields = 1 tasks" in r.stdout + r.stderr, "a scene's two coins of one mesh make one entry")
+with h5py.File("scene.h5") as f:
+    k = f["meshes"].attrs["keys"]
+    check((k.decode() if isinstance(k, bytes) else k) == key, "the scene's entry has the coin file's key")
+scene["objects"] = scene["objects"][2:]
+json.dump(scene, open("rock.json", "w"))
+r = run(f"{bin_dir}/clatter-bank", "pan-object", *demo[:-1], "--set=objects.scene=rock.json", "-o", "rock.h5")
+check(r.returncode == 2 and "none of its 1 objects is given by a mesh" in r.stderr and not os.path.exists("rock.h5"),
+      "a scene without meshes: exit 2, named, no bank")
 
 print("pan-object checks: " + ("all passed" if not failures else f"{len(failures)} failed"))
 sys.exit(1 if failures else 0)
