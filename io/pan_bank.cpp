@@ -455,7 +455,10 @@ void read_mesh_bodies(const File& file, const std::string& group, std::vector<mo
 // This build writes kPanBankFormatVersion and reads it and 5 (the same values; 6 added mesh entries).
 int check_pan_version(const File& file) {
   const auto version = has_attribute(file, "/", "format_version") ? read_attribute<std::int32_t>(file, "/", "format_version") : 0;
-  check_header(file, kPanBankFormat, version == 5 ? 5 : kPanBankFormatVersion);
+  check_header(file, kPanBankFormat, version);  // the format (and a version attribute at all)
+  if (version != 5 && version != kPanBankFormatVersion)
+    throw InputError(file.path() + ": format '" + kPanBankFormat + "' version " + std::to_string(version) +
+                     ", this build reads versions 5 and " + std::to_string(kPanBankFormatVersion));
   return version;
 }
 

@@ -170,7 +170,7 @@ foreach(case
     "truncated|truncated.h5: not a readable HDF5 file"
     "no_format|no_format.h5: not a Clatter file (no 'format' attribute)|expected format 'clatter-pan-bank'"
     "wrong_format|wrong_format.h5: format 'clatter-fdtd-raw', expected 'clatter-pan-bank'"
-    "wrong_version|wrong_version.h5: format 'clatter-pan-bank' version 1, this build reads version 6"
+    "wrong_version|wrong_version.h5: format 'clatter-pan-bank' version 1, this build reads versions 5 and 6"
     "wrong_shape|wrong_shape.h5: dataset '/proxies/c_m': expected float64 [2] in 'm', found float64 [1]"
     "corrupt|corrupt.h5: dataset '/coefficients/values' cannot be read: corrupt or truncated file"
     "index_out_of_range|index_out_of_range.h5: '/directions' set 0 (proxy 0, field 1): '/coefficients/index_delta' gives coefficient index 512 outside [0, 512)")
@@ -180,7 +180,7 @@ foreach(case
   set_tests_properties(bad_bank_${file} PROPERTIES FIXTURES_REQUIRED "pan_bank;bad_banks")
 endforeach()
 clatter_error_test(bad_bank_info_corrupt 0 "corrupt.h5;cannot be read: corrupt or truncated file" info ${bad_banks}/corrupt.h5)
-clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads version 6" info ${bad_banks}/wrong_version.h5)
+clatter_error_test(bad_bank_info_version 0 "wrong_version.h5;version 1, this build reads versions 5 and 6" info ${bad_banks}/wrong_version.h5)
 clatter_error_test(bad_bank_info_wrong_format 0 "wrong_format.h5: format 'clatter-fdtd-raw' is not a bank's;clatter-pan-bank, clatter-modal-bank, clatter-object-bank, clatter-ground-bank"
                    info ${bad_banks}/wrong_format.h5)
 clatter_error_test(bad_bank_info_no_format 0 "no_format.h5: not a Clatter file (no 'format' attribute);expected a bank"
