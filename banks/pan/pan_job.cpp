@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/stage_log.hpp"
+#include "io/scene.hpp"
 #include "kernels/fdtd/listeners.hpp"
 #include "kernels/pan/directions.hpp"
 #include "kernels/pan/field.hpp"
@@ -37,6 +38,14 @@ model::PanHeldOut check_held_out(const PanSpec& spec, const model::PanBankHeader
     out.raw_l2.push_back(std::sqrt(e));
   }
   return out;
+}
+
+void read_scene_meshes(PanParams& params) {
+  if (params.objects_scene.empty()) return;
+  const io::Scene scene = io::read_scene(params.objects_scene, false);
+  params.scene_objects = scene.objects.size();
+  for (const io::SceneObject& o : scene.objects)
+    if (!o.mesh_path.empty()) params.scene_meshes.push_back({o.mesh_path, o.where});
 }
 
 TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s) {

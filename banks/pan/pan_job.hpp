@@ -97,6 +97,10 @@ double held_out_error(const PanSpec& spec, const model::PanBankHeader& header, c
 model::PanHeldOut check_held_out(const PanSpec& spec, const model::PanBankHeader& header, const model::PanProxy& built,
                                  int field, const std::vector<std::array<double, 3>>& points, const std::vector<float>& raw);
 
+// pan-object's objects.scene: the scene's objects given by meshes into params.scene_meshes (the
+// scene reader is io's; InputError names the scene's file and value).
+void read_scene_meshes(PanParams& params);
+
 // Solves and fits one task on `group`, hearing its raw field at held_out_points too; the writer of its result on the group's rank 0.
 TaskWriter run_pan_task(MPI_Comm group, const PanSpec& spec, const PanTask& task, double progress_interval_s);
 // The bank from a results folder: every task found done, the others listed as failed or missing;

@@ -112,8 +112,9 @@ class PanObjectKind final : public BankKind {
   const io::Schema& schema() const override { return pan_object_schema(); }
 
   BankSweep sweep(const io::Config& config, const RunContext& context) const override {
-    return pan_sweep(name(), config, std::make_shared<const PanSpec>(make_pan_spec(parse_pan_object_params(config))),
-                     context);
+    PanParams params = parse_pan_object_params(config);
+    read_scene_meshes(params);
+    return pan_sweep(name(), config, std::make_shared<const PanSpec>(make_pan_spec(params)), context);
   }
   FileTool info(CLI::App& app) const override { return pan_kind().info(app); }
 };

@@ -9,7 +9,6 @@
 
 #include "core/errors.hpp"
 #include "io/mesh.hpp"
-#include "io/scene.hpp"
 #include "banks/medium_keys.hpp"
 #include "kernels/fdtd/mesh_body.hpp"
 #include "kernels/fdtd/problem.hpp"
@@ -270,18 +269,13 @@ std::vector<PanBody> bodies(const PanParams& in) {
       out.push_back(std::move(b));
     }
     if (!in.objects_scene.empty()) {
-      const io::Scene scene = io::read_scene(in.objects_scene, false);
-      std::size_t with_mesh = 0;
-      for (const io::SceneObject& o : scene.objects) {
-        if (o.mesh_path.empty()) continue;
-        ++with_mesh;
-        PanBody b = mesh_body(o.mesh_path, fmt::format("{}: mesh '{}'", o.where, o.mesh_path), in.proxies_a_m,
-                              in.objects_all_octants);
+      for (const auto& [path, where] : in.scene_meshes) {
+        PanBody b = mesh_body(path, fmt::format("{}: mesh '{}'", where, path), in.proxies_a_m, in.objects_all_octants);
         if (known(b) == out.end()) out.push_back(std::move(b));
       }
-      if (with_mesh == 0 && out.empty())
+      if (in.scene_meshes.empty() && out.empty())
         throw InputError(fmt::format("config: key 'objects.scene' = '{}': none of its {} objects is given by a mesh",
-                                     in.objects_scene, scene.objects.size()));
+                                     in.objects_scene, in.scene_objects));
     }
     return out;
   }

@@ -70,6 +70,10 @@ struct PanParams {
   std::vector<std::array<double, 2>> proxies_list_m;  // (B, C); when given, replaces the grid
   std::vector<std::string> objects_meshes;            // pan-object: the OBJ files (then no proxies)
   std::string objects_scene;                          // pan-object: a scene whose mesh objects are entries too
+  // The scene's objects given by meshes, (OBJ path, where) each, and how many objects it has:
+  // read_scene_meshes fills them (the scene reader is in the HDF5-linked io library; this one is not).
+  std::vector<std::array<std::string, 2>> scene_meshes;
+  std::size_t scene_objects = 0;
   bool objects_all_octants = false;                   // pan-object: every mesh in the full domain, eight octants
   double grid_dx_m = 0;
   int grid_pml_cells = 0;
@@ -89,7 +93,8 @@ struct PanParams {
 };
 
 PanParams parse_pan_params(const io::Config& config);
-// The same for pan_object_schema(): objects.meshes, the proxy grid's keys absent.
+// The same for pan_object_schema(): objects.meshes, the proxy grid's keys absent. The scene of
+// objects.scene is read by read_scene_meshes (banks/pan/pan_job.hpp) before make_pan_spec.
 PanParams parse_pan_object_params(const io::Config& config);
 
 // Throws InputError for any invalid combination (the solve's checks included: make_solve_spec).
