@@ -18,7 +18,6 @@ PanSource::PanSource(const std::string& proxy_bank, const std::vector<std::strin
   if (proxy_bank.empty() && object_banks.empty()) throw InputError("PAN: no bank given (-b or -P)");
   auto load = [&](const std::string& path, bool proxies) {
     banks_.push_back(io::read_pan_bank(path));
-    paths_.push_back(path);
     const model::PanBank& bank = banks_.back();
     try {
       kernels::pan::check_direction_sets(bank);

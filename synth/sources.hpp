@@ -91,7 +91,6 @@ class PanSource : public SoundSource {
   std::size_t nearest_proxy(const kernels::ProxyFit& fit) const;            // closest (B, C) at the bank's A
 
   std::vector<model::PanBank> banks_;  // as read, evaluated in place (kernels/pan); the proxy bank first
-  std::vector<std::string> paths_;
   std::vector<std::size_t> proxies_;   // the proxy bank's ellipsoid entries
   std::vector<std::pair<std::string, EntryRef>> keys_;  // every bank's mesh entries, the first of a key kept
   std::vector<std::optional<EntryRef>> own_;            // per scene object (begin)

@@ -227,6 +227,28 @@ TEST(PanBank, SphereProxyReproducesTheExactTranslatingSphere) {
   }
 }
 
+// The pebble of the PanObjectBank tests: an icosphere of radius 7 cm, 5120 triangles, as an OBJ
+// file named `name` (written by rank 0); and a pan-object config of it at the demo resolution with
+// 3 cm cells, field 1.
+namespace {
+std::string write_pebble(const std::string& name) {
+  const std::string path = (std::filesystem::current_path() / name).string();
+  const auto mesh = reference::icosphere(0.07, 4);
+  if (root()) std::ofstream(path) << io::obj_text(io::TriangleMesh{mesh.vertices, mesh.triangles});
+  MPI_Barrier(MPI_COMM_WORLD);
+  return path;
+}
+io::Config pebble_config(const std::string& mesh_path) {
+  io::Config config(jobs::pan_object_schema());
+  config.set("pulse.h_s=0.0005");
+  config.set("grid.dx_m=0.03");
+  config.set("time.dt_s=4.1666666666666665e-05");
+  config.set("solve.fields=[1]");
+  config.set("objects.meshes=[\"" + mesh_path + "\"]");
+  return config;
+}
+}  // namespace
+
 // A pan-object entry (000 section 5's per-object PAN) of a sphere given as a mesh: an icosphere of
 // radius 7 cm (a pebble; 5120 triangles, vertices on the sphere, facets at most 0.2 mm (0.15 %)
 // inside it), which the entry scales to A = 0.5 m. Through the bank file, against the sphere proxy
@@ -234,16 +256,8 @@ TEST(PanBank, SphereProxyReproducesTheExactTranslatingSphere) {
 // at a radius between the stored ones (0.92 m) and at 3x the outermost (15 m). Measured: 0.32 % and
 // 0.39 % to the proxy; 0.97 % and 1.26 % to the exact solution, the proxy's own 0.99 % and 1.26 %.
 TEST(PanObjectBank, IcosphereEntryMatchesTheSphereProxyAndTheExactSphere) {
-  const std::string mesh_path = (std::filesystem::current_path() / "pan_object_sphere.obj").string();
-  const auto sphere_mesh = reference::icosphere(0.07, 4);
-  if (root()) std::ofstream(mesh_path) << io::obj_text(io::TriangleMesh{sphere_mesh.vertices, sphere_mesh.triangles});
-  MPI_Barrier(MPI_COMM_WORLD);
-  io::Config config(jobs::pan_object_schema());
-  config.set("pulse.h_s=0.0005");
-  config.set("grid.dx_m=0.03");
-  config.set("time.dt_s=4.1666666666666665e-05");
-  config.set("solve.fields=[1]");
-  config.set("objects.meshes=[\"" + mesh_path + "\"]");
+  const std::string mesh_path = write_pebble("pan_object_sphere.obj");
+  const io::Config config = pebble_config(mesh_path);
   const auto spec = jobs::make_pan_spec(jobs::parse_pan_object_params(config));
   ASSERT_EQ(spec.bodies.size(), 1u);
   const auto built = jobs::build_proxy(MPI_COMM_WORLD, spec, 0, {}, 0.0);
@@ -291,21 +305,13 @@ TEST(PanObjectBank, IcosphereEntryMatchesTheSphereProxyAndTheExactSphere) {
 // (with 15 directions per octant that costs 1.6-3.1 % against the exact solution, 0.9-1.0 % for the
 // one-octant entry; with 45, 1.0-1.3 % against 1.0-1.1 %).
 TEST(PanObjectBank, EightOctantEntryOfASymmetricMeshMatchesItsOneOctantEntryAndTheExactSphere) {
-  const std::string mesh_path = (std::filesystem::current_path() / "pan_object_octants.obj").string();
-  const auto sphere_mesh = reference::icosphere(0.07, 4);
-  if (root()) std::ofstream(mesh_path) << io::obj_text(io::TriangleMesh{sphere_mesh.vertices, sphere_mesh.triangles});
-  MPI_Barrier(MPI_COMM_WORLD);
+  const std::string mesh_path = write_pebble("pan_object_octants.obj");
   auto entry_of = [&](bool all_octants, const std::string& file) {
-    io::Config config(jobs::pan_object_schema());
-    config.set("pulse.h_s=0.0005");
-    config.set("grid.dx_m=0.03");
-    config.set("time.dt_s=4.1666666666666665e-05");
-    config.set("solve.fields=[1]");
+    io::Config config = pebble_config(mesh_path);
     config.set("fit.divisions=8");
     config.set("fit.direction_tolerance=0");
     config.set("fit.radii_m=[0.7, 1.0, 1.5, 3.0]");  // 5 series per direction, not 9: half the hearing
     config.set(std::string("objects.all_octants=") + (all_octants ? "true" : "false"));
-    config.set("objects.meshes=[\"" + mesh_path + "\"]");
     auto spec = jobs::make_pan_spec(jobs::parse_pan_object_params(config));
     auto built = jobs::build_proxy(MPI_COMM_WORLD, spec, 0, {}, 0.0);
     model::PanProxy entry;
