@@ -60,6 +60,20 @@ int run_bank_sweep(MPI_Comm world, const BankSweep& sweep, const SweepOptions& o
   const std::string results_dir = options.results_dir();
   // Before the results folder or the output is touched; held until this function returns.
   const SweepLocks locks(world, results_dir, slice.index, slice.count, slice.count > 1 ? "" : options.out, command);
+  // A resumed run whose bank is already whole: its task files went when it was merged, and solving
+  // them again would only rewrite the same bank.
+  if (slice.count == 1 && options.resume) {
+    bool done = false;
+    mpi::agree(world, [&] {
+      if (mpi::rank(world) == 0) done = holds_complete_bank(options.out, sweep.manifest.id());
+    });
+    if (mpi::broadcast(world, done)) {
+      spdlog::info("{}: {} already holds every task of this sweep; nothing to resume (leave out --resume to "
+                   "build it again)",
+                   kind, options.out);
+      return kExitOk;
+    }
+  }
   if (slice.count == 1)  // a bank at OUT that the merge would keep is kept before anything is computed
     mpi::agree(world, [&] {
       if (mpi::rank(world) == 0)

@@ -116,4 +116,14 @@ void check_replace(const std::string& out, const model::SweepStatus& merged, boo
       fmt::format("{}: holds {}; not replaced (--force replaces it; or choose another --out)", out, holds));
 }
 
+bool holds_complete_bank(const std::string& out, const std::string& sweep_id) {
+  if (!fs::exists(out)) return false;
+  try {
+    const model::SweepStatus old = io::read_sweep_status(io::File::open(out));
+    return old.sweep_id == sweep_id && old.complete();
+  } catch (const std::exception&) {
+    return false;  // not a bank: check_replace says what it holds
+  }
+}
+
 }  // namespace clatter::jobs

@@ -45,4 +45,8 @@ LockTiming lock_timing();
 // stays. `force` replaces anything.
 void check_replace(const std::string& out, const model::SweepStatus& merged, bool force);
 
+// Whether `out` is a complete bank of the sweep `sweep_id` (false when it is missing, partial, of
+// another sweep or unreadable): a resumed run has nothing left to do there.
+bool holds_complete_bank(const std::string& out, const std::string& sweep_id);
+
 }  // namespace clatter::jobs

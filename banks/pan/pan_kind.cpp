@@ -92,14 +92,15 @@ class PanKind final : public BankKind {
   }
 
   PlanEstimate plan(const io::Config& config, const PlanOptions& options) const override {
-    return pan_plan_estimate(config, options);
+    return pan_plan_estimate(parse_pan_params(config), options);
   }
 
   std::vector<Command> more_commands(CLI::App& parent) const override { return {add_solve_command(parent)}; }
 };
 
 // 000 section 5's per-object PAN: the same sweep over given meshes. Its files are PAN banks
-// (format clatter-pan-bank), so `info`, `probe` and `plan` are the pan kind's.
+// (format clatter-pan-bank), so `info` and `probe` are the pan kind's; `plan` costs each entry's
+// grid (an entry of eight octants solves the full domain).
 class PanObjectKind final : public BankKind {
  public:
   const char* name() const override { return "pan-object"; }
@@ -117,6 +118,12 @@ class PanObjectKind final : public BankKind {
     return pan_sweep(name(), config, std::make_shared<const PanSpec>(make_pan_spec(params)), context);
   }
   FileTool info(CLI::App& app) const override { return pan_kind().info(app); }
+
+  PlanEstimate plan(const io::Config& config, const PlanOptions& options) const override {
+    PanParams params = parse_pan_object_params(config);
+    read_scene_meshes(params);
+    return pan_plan_estimate(params, options);
+  }
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -22,9 +23,17 @@ struct Calibration {
 // sphere plus a few cells, so the per-cell costs (bulk, cut cells, layer) resemble a task's. Solved
 // twice, with and without its listeners through the surface, for the cost of each (a task hears
 // directions x (radii + 1) series, a cost that grows with the record, not the grid).
-Calibration calibrate(const io::Config& config, double given_rate) {
-  PanParams small = parse_pan_params(config);
+Calibration calibrate(const PanParams& params, double given_rate) {
+  PanParams small = params;
   const double dx = small.grid_dx_m, a = small.proxies_a_m;
+  if (!small.objects_meshes.empty() || !small.objects_scene.empty()) {
+    // Objects: a mesh entry of one octant costs what a proxy does on the same grid (the bounding
+    // sphere A), so the sphere proxy stands in; the full domain's cells step at the same rate.
+    small.objects_meshes.clear();
+    small.objects_scene.clear();
+    small.scene_meshes.clear();
+    small.proxies_list_m = {{a, a}};
+  }
   small.fit_radii_m = {a + 6 * dx, a + 7 * dx};
   small.time_tail_s = 64 * small.time_dt_s;
   small.solve_fields = {1};
@@ -52,78 +61,105 @@ Calibration calibrate(const io::Config& config, double given_rate) {
   return c;
 }
 
-// The cost model. Tasks are equal in size: the sweep takes `waves` task times; ranks of a group
-// split the cells.
-struct PlanCost {
-  double cells = 0;    // per task
-  int steps = 0;
-  double updates = 0;  // cell-updates per task
-  double series = 0;   // series per task heard through the surface (directions x (radii + 1))
-  Calibration cal;
-  int groups = 0;
-  std::size_t waves = 0;
-  double task_s = 0, wall_s = 0, limit_s = 0;
-  double listener_bytes = 0, rank_bytes = 0;  // rank_bytes: per rank, the listener records counted
-  int cores = 0, nodes = 0;                    // cores per node, nodes of the job
+// The cost of one task on a grid: an entry of one octant solves spec.solve's octant grid, one of
+// eight octants (a mesh without mirror symmetry) spec.solve_full's whole domain and hears every
+// octant. Ranks of a group split the cells; the surface's series are rank 0's alone.
+struct TaskCost {
+  double cells = 0;
+  double updates = 0;  // cell-updates
+  double series = 0;   // series heard through the surface (directions x (radii + 1), every octant)
+  double task_s = 0;
+  double rank_bytes = 0, listener_bytes = 0;  // rank_bytes: per rank, the listener records counted
 };
 
-PlanCost plan_cost(const io::Config& config, const PanSpec& spec, std::size_t n_tasks, const PlanOptions& o) {
-  PlanCost c;
-  const auto& g = spec.solve.problem.grid;
-  c.cells = static_cast<double>(g.n[0]) * g.n[1] * g.n[2];
-  c.steps = spec.solve.n_samples - 1;
+// The cost model: tasks handed out in order to the groups (list_schedule_s).
+struct PlanCost {
+  int steps = 0;
+  Calibration cal;
+  TaskCost octant, full;  // full: only when an entry has eight octants
+  bool any_full = false;
+  std::vector<double> task_s;
+  int groups = 0;
+  double wall_s = 0, limit_s = 0;
+  int cores = 0, nodes = 0;  // cores per node, nodes of the job
+};
+
+TaskCost task_cost(const PanSpec& spec, const SolveSpec& solve, int octants, const Calibration& cal, int ranks_per_task) {
+  TaskCost t;
+  const auto& g = solve.problem.grid;
+  t.cells = static_cast<double>(g.n[0]) * g.n[1] * g.n[2];
   // With refinement a task solves field 3 too, its floor's yardstick (build_proxy): a bound.
-  c.updates = c.cells * c.steps * (spec.direction_tolerance > 0 ? 2 : 1);
-  c.cal = calibrate(config, o.rate);
+  t.updates = t.cells * (solve.n_samples - 1) * (spec.direction_tolerance > 0 ? 2 : 1);
+  t.series = pan_series_per_task(spec) * octants;
+  t.task_s = t.updates / (cal.rate * ranks_per_task) + t.series * solve.n_samples * cal.surface_s;
+  t.listener_bytes = (static_cast<double>(solve.listeners_m.size()) * 4 + t.series * 8) * solve.n_samples;
+  t.rank_bytes = cal.bytes_per_cell * t.cells / ranks_per_task + t.listener_bytes;
+  return t;
+}
+
+PlanCost plan_cost(const PanParams& params, const PanSpec& spec, const std::vector<PanTask>& tasks, const PlanOptions& o) {
+  PlanCost c;
+  c.steps = spec.solve.n_samples - 1;
+  c.cal = calibrate(params, o.rate);
+  c.octant = task_cost(spec, spec.solve, 1, c.cal, o.ranks_per_task);
+  c.any_full = std::any_of(spec.bodies.begin(), spec.bodies.end(), [](const PanBody& b) { return b.shape.octants == 8; });
+  if (c.any_full) c.full = task_cost(spec, spec.solve_full, 8, c.cal, o.ranks_per_task);
+  for (const auto& t : tasks) c.task_s.push_back(spec.bodies[t.proxy].shape.octants == 8 ? c.full.task_s : c.octant.task_s);
   c.groups = o.ranks / o.ranks_per_task;
-  c.waves = (n_tasks + static_cast<std::size_t>(c.groups) - 1) / static_cast<std::size_t>(c.groups);
-  c.series = pan_series_per_task(spec);
-  // The grid's steps split over the group's ranks; the surface's series are rank 0's alone.
-  c.task_s = c.updates / (c.cal.rate * o.ranks_per_task) + c.series * spec.solve.n_samples * c.cal.surface_s;
-  c.wall_s = static_cast<double>(c.waves) * c.task_s;
+  c.wall_s = list_schedule_s(c.task_s, c.groups);
   c.limit_s = 1.5 * c.wall_s + 600;  // margin for slower nodes and queue start-up, plus the 120 s signal
-  c.listener_bytes = (static_cast<double>(spec.solve.listeners_m.size()) * 4 + c.series * 8) * spec.solve.n_samples;
-  c.rank_bytes = c.cal.bytes_per_cell * c.cells / o.ranks_per_task + c.listener_bytes;
   c.cores = o.cores_per_node > 0 ? o.cores_per_node : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   c.nodes = (o.ranks + c.cores - 1) / c.cores;
   return c;
 }
 
-// The plan as printed: the sweep, the cost per task and of the job, and every task.
-std::string pan_report(const PanSpec& spec, const std::vector<PanTask>& tasks, const PlanOptions& o, const PlanCost& c) {
-  const auto& g = spec.solve.problem.grid;
-  std::string out = fmt::format("plan: {}: {} {} x {} fields = {} tasks\n", o.config_path.empty() ? "defaults" : o.config_path,
-                                spec.bodies.size(), !spec.bodies.empty() && spec.bodies[0].mesh ? "meshes" : "proxies",
-                                spec.solve.fields.size(), tasks.size());
-  out += fmt::format("  per task:    {} grid {}x{}x{} = {:.3g} M cells, {} steps: {:.3g} cell-updates; {}{:.0f} series "
-                     "through the Kirchhoff surface{}\n",
-                     g.octant ? "octant" : "full", g.n[0], g.n[1], g.n[2], c.cells / 1e6, c.steps, c.updates,
-                     spec.direction_tolerance > 0 ? "up to " : "", c.series,
+std::string task_line(const char* what, const SolveSpec& solve, const TaskCost& t, const PanSpec& spec, int steps) {
+  const auto& g = solve.problem.grid;
+  return fmt::format("  per task{}: {} grid {}x{}x{} = {:.3g} M cells, {} steps: {:.3g} cell-updates; {}{:.0f} series "
+                     "through the Kirchhoff surface{}; {}\n",
+                     what, g.octant ? "octant" : "full", g.n[0], g.n[1], g.n[2], t.cells / 1e6, steps, t.updates,
+                     spec.direction_tolerance > 0 ? "up to " : "", t.series,
                      spec.direction_tolerance > 0 ? fmt::format(" (adaptive directions: fit.max_directions = {} bounds "
                                                                 "them; the time is a bound too)", spec.max_directions)
-                                                  : std::string());
+                                                  : std::string(),
+                     clock_text(t.task_s));
+}
+
+// The plan as printed: the sweep, the cost per task and of the job, and every task.
+std::string pan_report(const PanSpec& spec, const std::vector<PanTask>& tasks, const PlanOptions& o, const PlanCost& c) {
+  const bool meshes = !spec.bodies.empty() && spec.bodies[0].mesh;
+  std::string out = fmt::format("plan: {}: {} {} x {} fields = {} tasks\n", o.config_path.empty() ? "defaults" : o.config_path,
+                                spec.bodies.size(), meshes ? "meshes" : "proxies", spec.solve.fields.size(), tasks.size());
+  out += task_line(c.any_full ? " (1 octant)  " : "   ", spec.solve, c.octant, spec, c.steps);
+  if (c.any_full) out += task_line(" (8 octants) ", spec.solve_full, c.full, spec, c.steps);
+  const TaskCost& big = c.any_full ? c.full : c.octant;
   out += fmt::format("  memory:      {:.1f} bytes/cell -> {:.0f} MiB per rank with {} rank(s) per task (+ {:.0f} MiB of "
-                     "listener records on each group's rank 0, counted)\n",
-                     c.cal.bytes_per_cell, c.rank_bytes / 1048576.0, o.ranks_per_task, c.listener_bytes / 1048576.0);
+                     "listener records on each group's rank 0, counted){}\n",
+                     c.cal.bytes_per_cell, big.rank_bytes / 1048576.0, o.ranks_per_task, big.listener_bytes / 1048576.0,
+                     c.any_full ? ", for the full domain" : "");
   out += fmt::format("  calibration: {:.3g} cell-updates/s per rank ({})\n", c.cal.rate, c.cal.how);
-  out += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}; {} waves of {} per task\n",
-                     o.ranks, c.nodes, c.cores, c.groups, o.ranks_per_task, c.waves, clock_text(c.task_s));
+  out += fmt::format("  job:         {} ranks on {} node(s) of {} cores, {} group(s) of {}, each taking the next task "
+                     "when free\n",
+                     o.ranks, c.nodes, c.cores, c.groups, o.ranks_per_task);
   out += fmt::format("  predicted:   {} wall; time limit with 1.5x margin + 10 min: {}\n", clock_text(c.wall_s),
                      clock_text(c.limit_s));
   out += "  tasks:\n";
-  for (const auto& t : tasks)
-    out += fmt::format("    {}  {}  field {}  {:.3g} cell-updates\n", t.name, spec.bodies[t.proxy].label(), t.field,
-                       c.updates);
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    const auto& t = tasks[i];
+    const PanBody& b = spec.bodies[t.proxy];
+    out += fmt::format("    {}  {}  field {}  {}{}\n", t.name, b.label(), t.field, clock_text(c.task_s[i]),
+                       b.shape.octants == 8 ? "  (8 octants)" : "");
+  }
   return out;
 }
 
 }  // namespace
 
-PlanEstimate pan_plan_estimate(const io::Config& config, const PlanOptions& o) {
-  const PanSpec spec = make_pan_spec(config);
+PlanEstimate pan_plan_estimate(const PanParams& params, const PlanOptions& o) {
+  const PanSpec spec = make_pan_spec(params);
   const auto tasks = pan_tasks(spec);
-  const PlanCost cost = plan_cost(config, spec, tasks.size(), o);
-  return {pan_report(spec, tasks, o, cost), std::vector<double>(tasks.size(), cost.task_s), cost.nodes};
+  const PlanCost cost = plan_cost(params, spec, tasks, o);
+  return {pan_report(spec, tasks, o, cost), cost.task_s, cost.nodes};
 }
 
 }  // namespace clatter::jobs

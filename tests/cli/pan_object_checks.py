@@ -5,7 +5,8 @@ resolution on 2 ranks, field 3; then what the bank says of it, checked against t
 here (independent of the code): its normalization (scale = A / the largest vertex distance from
 the centre of mass, which symmetry puts at the box's centre), the key's length, `info`'s lines, `probe`
 by the key's start at the mesh's own size (--scale 1/scale) and the held-out summary the sweep
-logged; then a scene's mesh objects (objects.scene), each mesh once. Usage: pan_object_checks.py
+logged; `plan --kind pan-object` on one and eight octants; then a scene's mesh objects
+(objects.scene), each mesh once. Usage: pan_object_checks.py
 BIN_DIR MPIEXEC WORKDIR"""
 import math, os, shutil, subprocess, sys
 
@@ -70,6 +71,35 @@ peak = max(abs(float(l.split(",")[1])) for l in rows[1:]) if len(rows) > 1 else 
 check(peak > 0, f"probe's series is not silent (peak {peak:.3g} Pa per m/s^2)")
 wrong = run(f"{bin_dir}/clatter-bank", "probe", "coin.h5", "--mesh", "zz", "--field", "3", "--point", "0,0,1.2")
 check(wrong.returncode == 2 and "no mesh entry with a key starting 'zz'" in wrong.stderr, "probe --mesh of an unknown key: exit 2, named")
+
+# plan --kind pan-object: the coin's task on the octant grid; with objects.all_octants its full
+# domain, whose grid is the octant grid mirrored into the other seven (8x the cells, to within the
+# cells the mirror planes share), and eight octants' hearing. Its time: the same calibrated rate
+# times 8x the cell-updates plus 8x the series, so at least 8x the octant task's grid part.
+import re
+
+
+def plan(*sets):
+    r = run(f"{bin_dir}/clatter-bank", "plan", "--kind", "pan-object", *demo, *sets, "--ranks", "2", "--rate", "1e8")
+    return r.returncode, r.stdout + r.stderr
+
+
+def task_lines(text):  # (cells, cell-updates, series) of each "per task" line
+    return [tuple(float(x) for x in m) for m in
+            re.findall(r"= ([0-9.e+]+) M cells, \d+ steps: ([0-9.e+]+) cell-updates; (?:up to )?([0-9.e+]+) series", text)]
+
+
+code, one = plan()
+check(code == 0 and "1 meshes x 1 fields = 1 tasks" in one and "(8 octants)" not in one, "plan --kind pan-object: 1 mesh, octant grid")
+code, eight = plan("--set=objects.all_octants=true")
+lines = task_lines(eight)
+check(code == 0 and len(lines) == 2 and "(8 octants)" in eight, f"plan of an eight-octant entry names both grids ({len(lines)} lines)")
+if len(lines) == 2:
+    (cells_1, updates_1, series_1), (cells_8, updates_8, series_8) = lines
+    check(7.5 < cells_8 / cells_1 <= 8.0, f"full domain / octant grid = {cells_8 / cells_1:.3f} cells (8, less the shared planes)")
+    check(abs(series_8 / series_1 - 8) < 1e-9, f"eight octants hear 8x the series ({series_8:.0f} / {series_1:.0f})")
+    # Both printed to 3 digits: equal to within their rounding.
+    check(abs(updates_8 / updates_1 / (cells_8 / cells_1) - 1) < 0.01, "cell-updates scale with the cells (same steps)")
 
 # A scene's objects (objects.scene): two coins of one mesh and a rock given by numbers make one
 # entry, the same key; refused before any solve when the scene has no mesh at all (a plan-free check:

@@ -3,7 +3,8 @@
 # for (a) 1 rank, (b) 2 ranks, (c) 2 ranks as one group of 2, (d) 2 ranks stopped by SIGTERM and
 # resumed; the interrupted run leaves only complete task files and releases its locks; a task that
 # fails (an I/O error: its result path is taken by a folder) is recorded, the sweep goes on, the
-# exit code is 4, `info` lists it, and --resume retries it into the same bank.
+# exit code is 4, `info` lists it, and --resume retries it into the same bank; --resume on a complete
+# bank does nothing.
 # Usage: sweep_checks.sh CLATTER_BANK CONFIG SCRATCH MPIEXEC...
 set -uo pipefail
 # shellcheck source=interrupt_lib.sh
@@ -63,6 +64,13 @@ run 2 -o d.h5 --resume > d3.log 2>&1 || fail "resume: exit $?"
 grep -q "$kept already done" d3.log || fail "resume did not skip the $kept finished tasks"
 echo "(d) resumed:               $(sum d.h5)"
 [[ -e d.h5.tasks ]] && fail "the resumed sweep left its results folder"
+# Resumed once more, the bank is whole and its task files are gone: nothing is solved or rewritten.
+before=$(stat -c %Y.%s d.h5)
+run 2 -o d.h5 --resume > d4.log 2>&1 || fail "resume of a complete bank: exit $?"
+grep -q "nothing to resume" d4.log || fail "resume of a complete bank did not say so: $(tail -3 d4.log)"
+grep -q "merge: wrote" d4.log && fail "resume of a complete bank solved and merged it again"
+[[ $(stat -c %Y.%s d.h5) == "$before" && ! -e d.h5.tasks ]] || fail "resume of a complete bank touched it"
+echo "(d) resumed again:         nothing to do, bank untouched"
 
 # A failing task: its result path is a folder.
 mkdir -p e.h5.tasks/p001-f4.h5

@@ -77,8 +77,8 @@ Quaternion about(Vec3 axis, double angle_rad) {
 std::vector<double> render_drops(const std::vector<Drop>& drops, Recorder& rec, synth::RenderStats* stats = nullptr) {
   const auto dir = std::filesystem::temp_directory_path() / "clatter-contact-synth";
   std::filesystem::create_directories(dir);
-  test::write_obj(test::icosphere(0.1, 4, {1, 2, 3}), (dir / "sphere.obj").string());  // off the origin: the body frame is the centre's
-  test::write_obj(test::box({0.1, 0.1, 0.1}, 2), (dir / "cube.obj").string());
+  EXPECT_TRUE(test::write_obj(test::icosphere(0.1, 4, {1, 2, 3}), (dir / "sphere.obj").string()));  // off the origin: the body frame is the centre's
+  EXPECT_TRUE(test::write_obj(test::box({0.1, 0.1, 0.1}, 2), (dir / "cube.obj").string()));
   const double side = 0.1, mass = kDensity * side * side * side, moment = mass * side * side / 6;
   std::ostringstream s;
   s.precision(17);

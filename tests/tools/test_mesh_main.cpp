@@ -5,9 +5,10 @@
 //   clatter-test-mesh disk RADIUS_M THICKNESS_M SEGMENTS RINGS OUT.obj
 //   clatter-test-mesh box A_M B_M C_M N OUT.obj
 //   clatter-test-mesh sphere RADIUS_M LEVELS OUT.obj
-// Exit 0 done, 2 bad arguments.
+// Exit 0 done, 1 the file cannot be written, 2 bad arguments.
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -44,7 +45,14 @@ int main(int argc, char** argv) {
   if (a[0] == "disk") m = clatter::test::disk(x[0], x[1], count(x[2]), count(x[3]));
   if (a[0] == "box") m = clatter::test::box({x[0], x[1], x[2]}, count(x[3]));
   if (a[0] == "sphere") m = clatter::test::icosphere(x[0], count(x[1]));
-  clatter::test::write_obj(m, a.back());
+  // The tests write into a build folder that no other test may have made yet (a clean clone).
+  const std::filesystem::path out(a.back());
+  std::error_code ec;
+  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path(), ec);
+  if (ec || !clatter::test::write_obj(m, a.back())) {
+    std::fprintf(stderr, "clatter-test-mesh: cannot write %s\n", a.back().c_str());
+    return 1;
+  }
   std::printf("clatter-test-mesh: wrote %s: %zu vertices, %zu triangles\n", a.back().c_str(), m.vertices_m.size(), m.triangles.size());
   return 0;
 }

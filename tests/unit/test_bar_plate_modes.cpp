@@ -191,7 +191,7 @@ TEST(TestMeshes, BarAndDiskBoundTheirSolids) {
 TEST(TestMeshes, WrittenOBJReadsBackExactly) {
   const io::TriangleMesh d = test::disk(0.1, 0.005, 96, 16);
   const std::string path = (std::filesystem::temp_directory_path() / "clatter-test-disk.obj").string();
-  test::write_obj(d, path);
+  ASSERT_TRUE(test::write_obj(d, path)) << path;
   const io::TriangleMesh back = io::read_obj(path);
   EXPECT_EQ(back.vertices_m, d.vertices_m);
   EXPECT_EQ(back.triangles, d.triangles);

@@ -196,6 +196,12 @@ inline io::TriangleMesh disk(double radius_m, double thickness_m, int segments, 
 }
 
 // The mesh as the OBJ text clatter reads (io::obj_text: shortest round-trip numbers).
-inline void write_obj(const io::TriangleMesh& m, const std::string& path) { std::ofstream(path) << io::obj_text(m); }
+// False when the file cannot be written (a missing folder, a full disk): callers say so and fail.
+inline bool write_obj(const io::TriangleMesh& m, const std::string& path) {
+  std::ofstream out(path);
+  out << io::obj_text(m);
+  out.close();
+  return static_cast<bool>(out);
+}
 
 }  // namespace clatter::test
