@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <unordered_map>
 
@@ -164,6 +165,7 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   SolveSpec s = body.shape.octants == 8 ? spec.solve_full : spec.solve;  // no mirror symmetry: the full domain
   s.problem.body = {spec.a_m, body.b_m, body.c_m};
   s.problem.mesh = body.mesh;  // a mesh entry's, normalized
+  s.kirchhoff = kirchhoff_shape(spec, body);
   if (body.mesh) {             // for the solve's log
     s.mesh_path = body.source;
     s.mesh_hash = body.shape.key;
@@ -218,6 +220,9 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
     std::vector<const float*> series;
     for (const auto& v : near) series.push_back(v.data());
     FarFieldStrength strength_3;
+    // Hearing is most of a task's time (docs/pan.md "Cost"): its progress, like the time loop's.
+    const auto t_hear = std::chrono::steady_clock::now();
+    auto last_report = t_hear;
     for (int o = 0; o < octants; ++o) {
       auto& field = out.proxy.field(f, o);
       const DirectionRefinement set =
@@ -228,6 +233,15 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
       strength_3.strongest_l2 = std::max(strength_3.strongest_l2, set.strength.strongest_l2);
       strength_3.energy += set.strength.energy / octants;
       for (std::size_t v = 0; v < set.mesh.size(); ++v) {
+        const auto now = std::chrono::steady_clock::now();
+        if (progress_interval_s > 0 && std::chrono::duration<double>(now - last_report).count() >= progress_interval_s) {
+          last_report = now;
+          const double elapsed = std::chrono::duration<double>(now - t_hear).count();
+          const double done = (static_cast<double>(o) + static_cast<double>(v) / static_cast<double>(set.mesh.size())) / octants;
+          spdlog::info("pan: {}, field {}: hearing direction {}/{}{} at {} radii and infinity, ETA {:.0f} s", body.label(), f,
+                       v + 1, set.mesh.size(), octants == 8 ? fmt::format(" of octant {}/8", o + 1) : std::string(), m,
+                       elapsed * (1 - done) / std::max(done, 1e-9));
+        }
         // Stored over the field's symmetry zeros (kernels/pan/directions.hpp), heard off the planes;
         // an entry of eight octants as it is, in the octant's own direction.
         const auto d = heard_direction(spec, proxy, f, o, set.mesh.direction(v));

@@ -104,6 +104,16 @@ PanSpec make_pan_spec(const io::Config& config);
 
 model::PanBankHeader pan_header(const PanSpec& spec);
 
+// The Kirchhoff surface of a body's solve: the spec's ball (the bounding sphere A + 3 cells) cut by
+// the body's box + 4 cells (the ellipsoid's semi-axes, a mesh's extent about its centre of mass).
+// Both hold the body with the faces' clearance, so their intersection does; a needle or a plate
+// has far fewer faces, and hearing costs per face (docs/pan.md "Cost").
+kernels::fdtd::SurfaceShape kirchhoff_shape(const PanSpec& spec, const PanBody& body);
+// The terms a series heard through that surface sums per sample: its faces times their mirror
+// images (8 in octant mode, 1 in the full domain of an entry of eight octants). The cost model
+// of hearing (pan_plan.cpp).
+double kirchhoff_terms(const PanSpec& spec, const PanBody& body);
+
 // The sweep (sweep/sweep.hpp): one task per entry and solved field, named "pNNN-fK" (a mesh
 // entry: "oNNN-fK").
 struct PanTask {

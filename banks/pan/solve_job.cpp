@@ -105,7 +105,7 @@ FieldRecord solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fd
     Stage stage("start");
     engine.start(problem.field);
     recorder.emplace(problem, spec.listeners_m, engine.layout(), spec.n_samples);
-    if (spec.kirchhoff_radius_m > 0) surface.emplace(problem, spec.kirchhoff_radius_m, engine.layout(), spec.n_samples);
+    if (spec.kirchhoff.radius_m > 0) surface.emplace(problem, spec.kirchhoff, engine.layout(), spec.n_samples);
   }
   {
     Stage loop("time loop");
@@ -137,7 +137,7 @@ FieldRecord solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fd
   Stage stage("Kirchhoff surface");
   const auto t_surface = std::chrono::steady_clock::now();
   const fdtd::SurfaceField surface_field =
-      fdtd::assemble_surface(problem, spec.kirchhoff_radius_m, spec.n_samples, -spec.i_time_zero * problem.dt_s, packs);
+      fdtd::assemble_surface(problem, spec.kirchhoff, spec.n_samples, -spec.i_time_zero * problem.dt_s, packs);
   packs.clear();
   for (const auto& d : spec.far_directions) out.far.push_back(fdtd::far_field(surface_field, d));
   for (const auto& x : spec.surface_listeners_m) out.near.push_back(fdtd::pressure_at(surface_field, x));
@@ -261,7 +261,7 @@ void write_raw(const std::string& path, const SolveSpec& spec, const SolveResult
   for (const auto& x : spec.surface_listeners_m) xyz.insert(xyz.end(), x.begin(), x.end());
   io::write_dataset<double>(file, "/listeners/x_m", xyz, {np, 3}, "m");
   io::write_attribute<std::int32_t>(file, "/listeners", "grid_listeners", static_cast<std::int32_t>(n_grid));
-  io::write_attribute<double>(file, "/listeners", "kirchhoff_radius_m", spec.kirchhoff_radius_m);
+  io::write_attribute<double>(file, "/listeners", "kirchhoff_radius_m", spec.kirchhoff.radius_m);
   for (std::size_t f = 0; f < spec.fields.size(); ++f) {
     const int field = spec.fields[f];
     std::vector<float> all = result.series[f];

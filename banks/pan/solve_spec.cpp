@@ -199,7 +199,7 @@ SolveSpec make_solve_spec(const SolveParams& in) {
     if (rs + 3 * dx > room_m)
       throw InputError(fmt::format("config: key 'kirchhoff.radius_m' has {}: the surface and the 2 cells outside it "
                                    "need {} m, the grid has {} m inside the layer (grid.half_width_m)", rs, rs + 3 * dx, room_m));
-    spec.kirchhoff_radius_m = rs;
+    spec.kirchhoff.radius_m = rs;
   }
   spec.i_time_zero = static_cast<int>(std::ceil(2.0 * p.h_s / p.dt_s - 1e-9));
   spec.n_samples = spec.i_time_zero + static_cast<int>(std::ceil(in.time_duration_s / p.dt_s)) + 1;
@@ -240,13 +240,13 @@ SolveSpec make_solve_spec(const SolveParams& in) {
   return spec;
 }
 
-double surface_outside_m(const SolveSpec& spec) { return spec.kirchhoff_radius_m + 2 * spec.problem.grid.dx_m; }
+double surface_outside_m(const SolveSpec& spec) { return spec.kirchhoff.radius_m + 2 * spec.problem.grid.dx_m; }
 
 std::optional<std::string> surface_listener_problem(const SolveSpec& spec, const std::array<double, 3>& x) {
   const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
   if (r <= surface_outside_m(spec))
     return fmt::format("{:.4g} m from the centre, not beyond the Kirchhoff surface (radius {} m + 2 cells = {:.4g} m)", r,
-                       spec.kirchhoff_radius_m, surface_outside_m(spec));
+                       spec.kirchhoff.radius_m, surface_outside_m(spec));
   const bool monopole = spec.fields.size() == 1 && spec.fields.front() == 0;
   const double body_radius = monopole ? 0.0 : spec.problem.solid().bounding_radius_m();
   const double arrival_s = (r - body_radius) / spec.problem.c_m_s;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/config.hpp"
+#include "kernels/fdtd/kirchhoff.hpp"
 #include "kernels/fdtd/problem.hpp"
 
 namespace clatter::jobs {
@@ -49,10 +50,11 @@ struct SolveSpec {
   kernels::fdtd::Problem problem;  // field set per solve
   std::vector<int> fields;         // 1..6, or {0} for the monopole
   std::vector<std::array<double, 3>> listeners_m;
-  // The Kirchhoff surface (kernels/fdtd/kirchhoff.hpp; 0: none): the radius of its staircase ball,
-  // and what it gives: the far field R p in each of far_directions, and the field at
-  // surface_listeners_m (points anywhere outside the surface, beyond the grid's edge too).
-  double kirchhoff_radius_m = 0;
+  // The Kirchhoff surface (kernels/fdtd/kirchhoff.hpp; radius 0: none): its staircase ball (a PAN
+  // task cuts it by the body's box), and what it gives: the far field R p in each of
+  // far_directions, and the field at surface_listeners_m (points anywhere outside the surface,
+  // beyond the grid's edge too).
+  kernels::fdtd::SurfaceShape kirchhoff;
   std::vector<std::array<double, 3>> far_directions;
   std::vector<std::array<double, 3>> surface_listeners_m;
   int i_time_zero = 0;             // sample index of t = 0 (the centre of psi)
@@ -68,7 +70,7 @@ struct SolveSpec {
   double mesh_scale = 1;
 };
 
-// The Kirchhoff surface's rule for a point x (spec.kirchhoff_radius_m > 0): heard through the
+// The Kirchhoff surface's rule for a point x (spec.kirchhoff.radius_m > 0): heard through the
 // surface when beyond surface_outside_m (the faces reach radius + dx / sqrt 2, kernels/fdtd/kirchhoff.hpp;
 // one cell more to spare); and refused when its sound would arrive after the record ends (it
 // would be heard as silence). The reason, or nullopt where x can be heard.

@@ -24,7 +24,7 @@ int cell_index(const Grid& grid, int axis, double x_m) {
 }
 
 // The cells across element e, innermost first, each with the sign its value takes: in octant mode
-// a cell past a mirror plane (near the ball's rim, the inner cells of a face can be) is read as its
+// a cell past a mirror plane (near the surface's rim, the inner cells of a face can be) is read as its
 // image in the octant, times the field's parity (eqs. 16-21).
 struct AcrossCells {
   std::array<std::array<int, 3>, kLayers> cell{};
@@ -59,6 +59,20 @@ std::pair<float, float> face_values(const std::array<float, kLayers>& v, const s
   return {static_cast<float>(value), static_cast<float>(slope / dx_m)};
 }
 
+// One element-image's copy into the accumulators: a0 += fp p + fn n, a1 += ft p over [k0, k1).
+// Nearly all of a PAN task's time (docs/benchmarks.md, BM_KirchhoffPoint). Cloned for AVX-512 and
+// AVX2: the rows are the element's contiguous series, so the wide loads do not split the way the
+// FDTD's 260-float rows do. Each sample's arithmetic is the same in every clone (no FMA
+// contraction, -ffp-contract=off), so the bits do not depend on the CPU.
+__attribute__((target_clones("avx512f", "avx2", "default")))
+void accumulate_row(float* __restrict a0, float* __restrict a1, const float* __restrict ps, const float* __restrict ns,
+                    float fp, float fn, float ft, long k0, long k1) {
+  for (long k = k0; k < k1; ++k) {
+    a0[k] += fp * ps[k] + fn * ns[k];
+    a1[k] += ft * ps[k];
+  }
+}
+
 // Sums of weighted, delayed copies of the surface series, in two sets (the second is
 // differentiated in time at the end). A copy delayed by a fractional number of samples is added
 // at its whole-sample shift into one of kBins accumulators by its fraction, and each accumulator
@@ -88,7 +102,9 @@ class DelaySum {
       : n_in_(n_in), lead_(lead), n_(n_in + lead), acc_(2, std::vector<float>(kBins * static_cast<std::size_t>(n_), 0.0f)) {}
 
   // Adds (wp p + wn n)[k + delay - lead] to set 0 and wt p[k + delay - lead] to set 1 for every
-  // output sample k: one pass over an element's two series.
+  // output sample k: one pass over an element's two series. (Summing the copies a tile of 256
+  // output samples at a time, so the accumulators stay in L2, was 2.9x slower: each tile then
+  // reads every element's series again, and those reads, not the accumulators, are what wait.)
   void add(double delay_samples, double wp, double wn, double wt, const float* p, const float* n) {
     const double whole = std::floor(delay_samples);
     long shift = static_cast<long>(whole) - lead_;
@@ -99,16 +115,9 @@ class DelaySum {
     }
     max_shift_ = std::max(max_shift_, shift);
     const std::size_t row = static_cast<std::size_t>(bin) * static_cast<std::size_t>(n_);
-    float* __restrict a0 = acc_[0].data() + row;
-    float* __restrict a1 = acc_[1].data() + row;
     const long k0 = std::max(0L, -shift), k1 = std::min<long>(n_, n_in_ - shift);
-    const float* __restrict ps = p + shift;
-    const float* __restrict ns = n + shift;
-    const float fp = static_cast<float>(wp), fn = static_cast<float>(wn), ft = static_cast<float>(wt);
-    for (long k = k0; k < k1; ++k) {
-      a0[k] += fp * ps[k] + fn * ns[k];
-      a1[k] += ft * ps[k];
-    }
+    accumulate_row(acc_[0].data() + row, acc_[1].data() + row, p + shift, n + shift, static_cast<float>(wp),
+                   static_cast<float>(wn), static_cast<float>(wt), k0, k1);
   }
 
   // scale x (set 0 + d/dt set 1), with the samples that needed data past the record's end zeroed.
@@ -168,9 +177,13 @@ std::vector<Image> images(const SurfaceField& s) {
 
 }  // namespace
 
-std::vector<SurfaceElement> ball_surface(const Grid& grid, double radius_m) {
-  const double dx = grid.dx_m;
-  auto inside = [&](const std::array<double, 3>& c) { return c[0] * c[0] + c[1] * c[1] + c[2] * c[2] <= radius_m * radius_m; };
+std::vector<SurfaceElement> staircase_surface(const Grid& grid, const SurfaceShape& shape) {
+  const double dx = grid.dx_m, radius_m = shape.radius_m;
+  const auto& box = shape.half_box_m;
+  auto inside = [&](const std::array<double, 3>& c) {
+    return c[0] * c[0] + c[1] * c[1] + c[2] * c[2] <= radius_m * radius_m && std::abs(c[0]) <= box[0] &&
+           std::abs(c[1]) <= box[1] && std::abs(c[2]) <= box[2];
+  };
   const int m = static_cast<int>(std::ceil(radius_m / dx)) + 1;  // cells per half axis that can be inside
   const int lo = grid.octant ? 0 : -m;
   std::vector<SurfaceElement> out;
@@ -210,9 +223,9 @@ double outside_radius_m(const std::vector<SurfaceElement>& elements, double dx_m
   return r + dx_m;  // a face's corners lie within dx / sqrt(2) of its centre
 }
 
-SurfaceRecorder::SurfaceRecorder(const Problem& problem, double radius_m, const Layout& layout, int n_samples)
+SurfaceRecorder::SurfaceRecorder(const Problem& problem, const SurfaceShape& shape, const Layout& layout, int n_samples)
     : n_samples_(static_cast<std::size_t>(n_samples)), dx_m_(problem.grid.dx_m) {
-  const auto elements = ball_surface(problem.grid, radius_m);
+  const auto elements = staircase_surface(problem.grid, shape);
   for (std::size_t e = 0; e < elements.size(); ++e) {
     const auto across = element_cells(problem.grid, elements[e], problem.field);
     bool all = true;
@@ -270,9 +283,9 @@ std::string SurfaceRecorder::pack() const {
   return out;
 }
 
-SurfaceField empty_surface(const Problem& problem, double radius_m, int n_samples, double t_first_s) {
+SurfaceField empty_surface(const Problem& problem, const SurfaceShape& shape, int n_samples, double t_first_s) {
   SurfaceField s;
-  s.elements = ball_surface(problem.grid, radius_m);
+  s.elements = staircase_surface(problem.grid, shape);
   s.n_samples = n_samples;
   s.dx_m = problem.grid.dx_m;
   s.dt_s = problem.dt_s;
@@ -285,9 +298,9 @@ SurfaceField empty_surface(const Problem& problem, double radius_m, int n_sample
   return s;
 }
 
-SurfaceField assemble_surface(const Problem& problem, double radius_m, int n_samples, double t_first_s,
+SurfaceField assemble_surface(const Problem& problem, const SurfaceShape& shape, int n_samples, double t_first_s,
                               const std::vector<std::string>& packs) {
-  SurfaceField s = empty_surface(problem, radius_m, n_samples, t_first_s);
+  SurfaceField s = empty_surface(problem, shape, n_samples, t_first_s);
   const std::size_t ns = static_cast<std::size_t>(n_samples), ne = s.elements.size();
   std::vector<char> done(ne, 0);
   // Single cells, by id: combined below in a fixed order, whatever the split.

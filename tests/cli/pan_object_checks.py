@@ -92,8 +92,8 @@ def task_lines(text):  # (cells, cell-updates, series) of each "per task" line
 code, one = plan()
 check(code == 0 and "1 meshes x 1 fields = 1 tasks" in one and "(8 octants)" not in one, "plan --kind pan-object: 1 mesh, octant grid")
 code, eight = plan("--set=objects.all_octants=true")
-lines = task_lines(eight)
-check(code == 0 and len(lines) == 2 and "(8 octants)" in eight, f"plan of an eight-octant entry names both grids ({len(lines)} lines)")
+lines = task_lines(one) + task_lines(eight)
+check(code == 0 and len(lines) == 2 and "(8 octants)" in eight, f"plan of the entry as one and as eight octants: a grid line each ({len(lines)} lines)")
 if len(lines) == 2:
     (cells_1, updates_1, series_1), (cells_8, updates_8, series_8) = lines
     check(7.5 < cells_8 / cells_1 <= 8.0, f"full domain / octant grid = {cells_8 / cells_1:.3f} cells (8, less the shared planes)")

@@ -48,7 +48,7 @@ TEST(FdtdKirchhoffSurface, TranslatingSphereHeardThroughTheSurfaceNearAtThreeMet
   const double s37 = std::sin(37.0 * M_PI / 180), c37 = std::cos(37.0 * M_PI / 180);
   c.set("listeners.points_m=[[0, 0, 0.3], [" + exact_text(0.3 * s37) + ", 0, " + exact_text(0.3 * c37) + "]]");
   auto spec = jobs::make_solve_spec(c);
-  spec.kirchhoff_radius_m = 0.115;
+  spec.kirchhoff.radius_m = 0.115;
   spec.far_directions = {{0, 0, 1}, {s37, 0, c37}};
   spec.surface_listeners_m = {{0, 0, 0.3}, {0.3 * s37, 0, 0.3 * c37}, {0, 0, 3.0}, {3 * s37, 0, 3 * c37}};
   // The record must reach the pulse's passage at 3 m.
@@ -100,7 +100,7 @@ TEST(FdtdKirchhoffSurface, ElongatedProxyHeardThroughTheSurfaceAgreesWithTheGrid
   for (const auto& x : points) text += "[" + exact_text(x[0]) + ", " + exact_text(x[1]) + ", " + exact_text(x[2]) + "], ";
   c.set(text.substr(0, text.size() - 2) + "]");
   auto spec = jobs::make_solve_spec(c);
-  spec.kirchhoff_radius_m = 0.62;
+  spec.kirchhoff.radius_m = 0.62;
   spec.surface_listeners_m = points;
   const auto result = jobs::run_solve(MPI_COMM_WORLD, spec, 0.0);
   if (mpi::rank(MPI_COMM_WORLD) != 0) return;
