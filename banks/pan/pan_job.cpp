@@ -232,6 +232,11 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
               : DirectionRefinement{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, {}};
       strength_3.strongest_l2 = std::max(strength_3.strongest_l2, set.strength.strongest_l2);
       strength_3.energy += set.strength.energy / octants;
+      if (!set.radiated) {  // noise, not worth a byte: kept as no coefficients
+        field.terms.assign(set.mesh.size(), model::SparseTerms{});
+        field.directions = set.mesh.stored();
+        continue;
+      }
       for (std::size_t v = 0; v < set.mesh.size(); ++v) {
         const auto now = std::chrono::steady_clock::now();
         if (progress_interval_s > 0 && std::chrono::duration<double>(now - last_report).count() >= progress_interval_s) {
@@ -336,7 +341,10 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
     add_strength(out.strength, spec.bodies[proxy].shape.octants == 8 ? q : q * pan::symmetry_zeros(surface.field, mesh.direction(v)));
   }
   // Not radiated: numerical noise, left at the layout.
-  if (out.strength.energy < kRadiatedEnergy * yardstick_energy) return out;
+  if (out.strength.energy < kRadiatedEnergy * yardstick_energy) {
+    out.radiated = false;
+    return out;
+  }
   const double floor = floor_from_strongest(strongest_q);
   std::vector<double> sum(spec.length);
   auto miss = [&](const pan::LatticePoint& p, const pan::DirectionWeights& w) {

@@ -70,6 +70,9 @@ struct DirectionRefinement {
   // The far fields heard through the surface (vertices and split points), aligned, by lattice key.
   std::unordered_map<std::int64_t, std::vector<double>> far_fields;
   FarFieldStrength strength;  // this field's layout_strength
+  // False below kRadiatedEnergy of the yardstick: what the surface hears is the solve's noise, and
+  // the field is stored with no coefficients (it sounds as silence).
+  bool radiated = true;
 };
 // Issue 32 excludes fields below 1 % of the strongest field's energy at the listeners. The
 // refinement decides before it knows the other fields, from the far field over the layout and
