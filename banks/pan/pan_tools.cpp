@@ -164,6 +164,23 @@ std::string pan_bank_info(const std::string& path) {
                      radii, h.epsilon);
   out += fmt::format("  size:        {:.3f} MB on disk, {} coefficients kept ({:.2f} % of {:.1f} MB as raw float32 series)\n",
                      file_mb, kept, 100.0 * file_mb / raw_mb, raw_mb);
+  if (bank.proxies.size() > 1 && kept > 0) {
+    // Each entry's share of the file, by its kept coefficients (the bulk of the file: a coefficient
+    // is M + 1 quantized values): what a bank of other entries would weigh (docs/pan.md).
+    out += "  per entry:   directions (all fields), coefficients as read, their share of the file\n";
+    for (const auto& p : bank.proxies) {
+      std::size_t n = 0, d = 0;
+      for (int o = 0; o < p.octants(); ++o)
+        for (int field = 1; field <= 6; ++field)
+          for (const auto& t : p.field(field, o).terms) {
+            n += t.index.size();
+            ++d;
+          }
+      if (d == 0) continue;
+      out += fmt::format("    {:<24} {:6} {:9}  {:.3f} MB\n", entry_label(p), d, n,
+                         file_mb * static_cast<double>(n) / static_cast<double>(kept));
+    }
+  }
   out += fmt::format("  provenance:  clatter {} (git {}), {} ranks, created {}\n", prov("clatter_version"),
                      prov("git_revision"), io::read_attribute<std::int32_t>(file, "/provenance/run", "n_ranks"),
                      run("created_utc"));
