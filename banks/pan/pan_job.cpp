@@ -232,7 +232,13 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
               : DirectionRefinement{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, {}};
       strength_3.strongest_l2 = std::max(strength_3.strongest_l2, set.strength.strongest_l2);
       strength_3.energy += set.strength.energy / octants;
-      if (!set.radiated) {  // noise, not worth a byte: kept as no coefficients
+      if (!set.radiated)
+        spdlog::info("pan: {}, field {}{}: {:.2g} of the yardstick's energy over the layout: {}", body.label(), f,
+                     octants == 8 ? fmt::format(" octant {}", o + 1) : std::string(),
+                     set.strength.energy / std::max(per_unit * per_unit * field_3.energy, 1e-300),
+                     set.silent ? "the solve's noise, stored with no coefficients (silence)"
+                                : "not radiated, left at the layout's directions");
+      if (set.silent) {  // noise, not worth a byte: kept as no coefficients
         field.terms.assign(set.mesh.size(), model::SparseTerms{});
         field.directions = set.mesh.stored();
         continue;
@@ -343,6 +349,7 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
   // Not radiated: numerical noise, left at the layout.
   if (out.strength.energy < kRadiatedEnergy * yardstick_energy) {
     out.radiated = false;
+    out.silent = out.strength.energy < kSilentEnergy * yardstick_energy;
     return out;
   }
   const double floor = floor_from_strongest(strongest_q);

@@ -70,15 +70,21 @@ struct DirectionRefinement {
   // The far fields heard through the surface (vertices and split points), aligned, by lattice key.
   std::unordered_map<std::int64_t, std::vector<double>> far_fields;
   FarFieldStrength strength;  // this field's layout_strength
-  // False below kRadiatedEnergy of the yardstick: what the surface hears is the solve's noise, and
-  // the field is stored with no coefficients (it sounds as silence).
+  // False below kRadiatedEnergy of the yardstick: left at the layout, and fitted as it is.
   bool radiated = true;
+  // True below kSilentEnergy: what the surface hears is the solve's noise (the sphere's rotations,
+  // a needle's turn about its own axis), stored with no coefficients; it sounds as silence.
+  bool silent = false;
 };
 // Issue 32 excludes fields below 1 % of the strongest field's energy at the listeners. The
 // refinement decides before it knows the other fields, from the far field over the layout and
 // against field 3, which is not always the strongest: a quarter of that share leaves a margin for
 // both (measured, docs/pan.md "Adaptive directions").
 inline constexpr double kRadiatedEnergy = 0.0025;
+// A field whose far field over the layout carries less than this share of the yardstick's energy
+// (0.3 % of its amplitude, 50 dB down) is the solve's noise. A weak field that is real, such as a
+// thin plate's translation along its own plane, lies between this and kRadiatedEnergy: stored.
+inline constexpr double kSilentEnergy = 1e-5;
 DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                       double tolerance, int max_levels, std::size_t max_vertices,
                                       double yardstick_energy = 0, int octant = 0);
