@@ -346,7 +346,7 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
     strongest_q = std::max(strongest_q, q);
     add_strength(out.strength, spec.bodies[proxy].shape.octants == 8 ? q : q * pan::symmetry_zeros(surface.field, mesh.direction(v)));
   }
-  // Not radiated: numerical noise, left at the layout.
+  // Not radiated: left at the layout; far below it, the solve's noise (stored empty, build_proxy).
   if (out.strength.energy < kRadiatedEnergy * yardstick_energy) {
     out.radiated = false;
     out.silent = out.strength.energy < kSilentEnergy * yardstick_energy;
