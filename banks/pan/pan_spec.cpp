@@ -59,7 +59,7 @@ const io::Schema& pan_schema() {
                                           "directions\")", {0.0, 1.0}},
         {"fit.direction_levels", std::int64_t{3}, "splits at most below an element of the layout (each quarters "
                                                   "its size)", {0, 8}},
-        {"fit.max_directions", std::int64_t{1000}, "stop refining a field at this many directions", {3, 100000}},
+        {"fit.max_directions", std::int64_t{2500}, "stop refining a field at this many directions", {3, 100000}},
         {"fit.epsilon", 0.01, "keep wavelet coefficient j iff |p^_i^j| >= epsilon ||p^_i||_inf at some radius i or at infinity (the far field)", {0.0, 1.0}},
         {"check.held_out_directions", std::int64_t{8}, "random directions per proxy (inside the octant, none a "
                                                        "stored one) where each task checks its field as the bank stores "

@@ -428,3 +428,57 @@ TEST(PanDirections, RefinementHoldsTheFarFieldBetweenItsDirectionsAtTheDemoResol
   EXPECT_LT(worst, 0.05);
   EXPECT_GT(paper_worst, 0.05);
 }
+
+TEST(PanDirections, RefinementHoldsTheFarFieldWhereAListenerHearsIt) {
+  // The refinement measures q = p / Z_f, the field over its symmetry zeros. A needle swinging about
+  // y (the cigar, field 5) has q's peaks near the planes, where Z_f is small, and a strong p where
+  // q is weak, 45 degrees off the axis. Measured against a tenth of q's peak alone, those
+  // directions passed as converged while their far field missed by 10 % at the paper's resolution
+  // (docs/pan.md, "The refinement's floor"). Here, at 2 cm cells and a 0.2 ms pulse, refined to
+  // 4 %: the far field at 64 random directions (no vertex), in the held-out check's floored
+  // measure (of max(|p|, a tenth of the strongest p)), misses by at most the tolerance and an
+  // eighth (the split points are samples, not a bound). Measured: 3.13 %; with the q floor alone
+  // 5.15 % (1340 directions against 1482).
+  io::Config config(jobs::pan_schema());
+  config.set("pulse.h_s=0.0002");
+  config.set("grid.dx_m=0.02");
+  config.set("time.dt_s=2.0833333333333333e-05");
+  config.set("proxies.list_m=[[0.025, 0.025]]");
+  config.set("solve.fields=[5]");
+  const auto spec = jobs::make_pan_spec(config);
+  jobs::SolveSpec s = spec.solve;
+  s.problem.body = {spec.a_m, 0.025, 0.025};
+  std::vector<double> misses, own;
+  std::size_t directions = 0;
+  auto hook = [&](std::size_t, const kernels::fdtd::SurfaceField& surface) {
+    const auto refined = jobs::refine_directions(spec, 0, surface, 0.04, 3, 5000);
+    directions = refined.mesh.size();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<double> sum(spec.length);
+    for (int i = 0; i < 64; ++i) {
+      std::array<double, 3> d{u(rng), u(rng), u(rng)};
+      const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      for (double& x : d) x /= n;
+      const auto truth = jobs::aligned_far_field(spec, 0, surface, d);
+      kernels::pan::blend(refined.mesh.locate(d), [&](std::size_t v) {
+        return jobs::stored_far_field(spec, 0, surface, refined.mesh.direction(v));
+      }, sum);
+      double num = 0, den = 0;
+      for (std::size_t k = 0; k < sum.size(); ++k) {
+        const double p = sum[k] * kernels::pan::symmetry_zeros(surface.field, d);
+        num += (p - truth[k]) * (p - truth[k]);
+        den += truth[k] * truth[k];
+      }
+      misses.push_back(std::sqrt(num));
+      own.push_back(std::sqrt(den));
+    }
+  };
+  jobs::run_solve(MPI_COMM_WORLD, s, 0.0, hook);
+  if (!root()) return;
+  const double strongest = *std::max_element(own.begin(), own.end());
+  double worst = 0;
+  for (std::size_t i = 0; i < misses.size(); ++i) worst = std::max(worst, misses[i] / std::max(own[i], 0.1 * strongest));
+  std::printf("cigar field 5, far field between %zu directions: worst floored miss in p %.2f %%\n", directions, 100 * worst);
+  EXPECT_LT(worst, 0.045);
+}
