@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <type_traits>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include "core/stage_log.hpp"
 #include "kernels/pulse.hpp"
@@ -32,7 +37,8 @@ inline Me4Sums me4_sums(const float* p, long sx, long sy, int k) {
   return s;
 }
 
-// One z row of the me4 bulk update. Cloned for AVX2 and the baseline: wider vectors divide its 25
+// One z row of the me4 bulk update where the CPU has no AVX-512VL (me4_row_avx512vl below, the
+// same arithmetic, where it has). Cloned for AVX2 and the baseline: wider vectors divide its 25
 // loads per cell. No AVX-512 clone: the rows start 4 floats apart from a cache line (260-float
 // rows), so nearly every 64-byte load of the 25 splits over two lines, and on Zen 5 the 256-bit
 // clone ran the whole step about 10 % faster (docs/benchmarks.md). Each cell's arithmetic is the
@@ -59,6 +65,135 @@ void blend_row(const float* __restrict p, float* __restrict q, long sx, long sy,
     q[k] += theta * (((d0 * p[k] + d1 * s.ring1) + d2 * s.ring2) + d3 * s.diag);
   }
 }
+
+#if defined(__x86_64__)
+#define CLATTER_ME4_AVX512VL 1
+
+// The me4 row kernel for CPUs with AVX-512VL, register-blocked along z. Of the 25 points per cell
+// it loads each of the 13 rows once, at k: the z neighbours k +- 1, k +- 2 of the five rows that
+// need them are lane shifts (valignd) of the vectors at k - 8, k and k + 8, kept from step to
+// step. 256-bit vectors: 512-bit ones split over two cache lines at every load (260-float rows),
+// and AVX-512VL brings the 32 vector registers that keep the windows and coefficients out of
+// memory (GCC 12 spilled with AVX2's 16). The arithmetic of each cell is me4_row's and
+// blend_row's, operation for operation (no FMA), so the bits are the same.
+using Vec = __m256;
+#define CLATTER_AVX512VL_FN __attribute__((target("avx512vl"))) [[gnu::always_inline]] inline
+
+// r[a, a + 8) with the lanes that fall outside r[lo, hi) not read (0): the ends of a row.
+template <bool kEdge>
+CLATTER_AVX512VL_FN Vec load8(const float* r, long a, long lo, long hi) {
+  if constexpr (!kEdge) {
+    return _mm256_loadu_ps(r + a);
+  } else {
+    const long from = std::max(0L, lo - a), to = std::min(8L, hi - a);
+    const unsigned lanes = to > from ? ((1u << to) - 1u) & ~((1u << from) - 1u) : 0u;
+    return _mm256_maskz_loadu_ps(static_cast<__mmask8>(lanes), r + a);
+  }
+}
+CLATTER_AVX512VL_FN Vec add(Vec a, Vec b) { return _mm256_add_ps(a, b); }
+CLATTER_AVX512VL_FN Vec mul(Vec a, Vec b) { return _mm256_mul_ps(a, b); }
+// The lanes [n, n + 8) of (lo, hi), lo first.
+template <int n>
+CLATTER_AVX512VL_FN Vec lanes_from(Vec hi, Vec lo) {
+  return _mm256_castsi256_ps(_mm256_alignr_epi32(_mm256_castps_si256(hi), _mm256_castps_si256(lo), n));
+}
+
+// A row around k: r[k - 8, k) and r[k, k + 8).
+struct ZWindow {
+  Vec prev, cur;
+};
+struct ZNeighbours {
+  Vec m2, m1, c, p1, p2;  // r at k - 2, k - 1, k, k + 1, k + 2
+};
+template <bool kTwo>
+CLATTER_AVX512VL_FN ZNeighbours slide(ZWindow& w, Vec next) {
+  ZNeighbours z;
+  z.c = w.cur;
+  z.m1 = lanes_from<7>(w.cur, w.prev);
+  z.p1 = lanes_from<1>(next, w.cur);
+  if constexpr (kTwo) {
+    z.m2 = lanes_from<6>(w.cur, w.prev);
+    z.p2 = lanes_from<2>(next, w.cur);
+  } else {
+    z.m2 = z.p2 = z.c;
+  }
+  w.prev = w.cur;
+  w.cur = next;
+  return z;
+}
+
+// The blend into the layer along one row: theta = max(theta_xy, theta_z[k]); cells [plain_lo,
+// plain_hi) are known to have theta = 0, and vectors within them skip it.
+struct Me4Blend {
+  const float* theta_z;
+  float theta_xy;
+  float d0, d1, d2, d3;  // srl - me4
+  long plain_lo, plain_hi;
+};
+
+__attribute__((target("avx512vl")))
+void me4_row_avx512vl(const float* __restrict p, float* __restrict q, long sx, long sy, int nk, Operator::Me4 c,
+                      const Me4Blend& blend) {
+  const float* const xm = p - sx;
+  const float* const xp = p + sx;
+  const float* const ym = p - sy;
+  const float* const yp = p + sy;
+  const long end = nk, row_end = end + 2;  // cells, and the row's values with its z neighbours
+  auto start = [&](const float* r) __attribute__((target("avx512vl"))) {
+    return ZWindow{load8<true>(r, -8, -2, row_end), load8<true>(r, 0, -2, row_end)};
+  };
+  ZWindow wc = start(p), wxm = start(xm), wxp = start(xp), wym = start(ym), wyp = start(yp);
+  const Vec c0 = _mm256_set1_ps(c.c0), c1 = _mm256_set1_ps(c.c1), c2 = _mm256_set1_ps(c.c2), c3 = _mm256_set1_ps(c.c3);
+  const Vec d0 = _mm256_set1_ps(blend.d0), d1 = _mm256_set1_ps(blend.d1), d2 = _mm256_set1_ps(blend.d2),
+            d3 = _mm256_set1_ps(blend.d3), theta_xy = _mm256_set1_ps(blend.theta_xy);
+  // Cells k .. k + 7. The two streams that come from memory (p^n two planes ahead, and p^{n-1} ->
+  // p^{n+1}) are fetched 1.5 KiB ahead: the hardware's prefetch alone left the loop waiting on
+  // them (25 % slower at 256^3).
+  auto step = [&](long k, auto edge, auto blended) __attribute__((target("avx512vl"), always_inline)) {
+    constexpr bool kEdge = decltype(edge)::value;
+    if constexpr (!kEdge) {
+      constexpr long kAheadFloats = 384;
+      _mm_prefetch(reinterpret_cast<const char*>(p + 2 * sx + k + kAheadFloats), _MM_HINT_T0);
+      _mm_prefetch(reinterpret_cast<const char*>(q + k + kAheadFloats), _MM_HINT_T0);
+    }
+    const ZNeighbours z = slide<true>(wc, load8<kEdge>(p, k + 8, -2, row_end));
+    const ZNeighbours zxm = slide<false>(wxm, load8<kEdge>(xm, k + 8, -2, row_end));
+    const ZNeighbours zxp = slide<false>(wxp, load8<kEdge>(xp, k + 8, -2, row_end));
+    const ZNeighbours zym = slide<false>(wym, load8<kEdge>(ym, k + 8, -2, row_end));
+    const ZNeighbours zyp = slide<false>(wyp, load8<kEdge>(yp, k + 8, -2, row_end));
+    auto at = [&](const float* r) __attribute__((target("avx512vl"), always_inline)) {
+      return load8<kEdge>(r, k, 0, end);
+    };
+    const Vec ring1 = add(add(add(zxm.c, zxp.c), add(zym.c, zyp.c)), add(z.m1, z.p1));
+    const Vec ring2 = add(add(add(at(p - 2 * sx), at(p + 2 * sx)), add(at(p - 2 * sy), at(p + 2 * sy))), add(z.m2, z.p2));
+    const Vec dxy = add(add(at(xm - sy), at(xp + sy)), add(at(xp - sy), at(xm + sy)));
+    const Vec dxz = add(add(zxm.m1, zxp.p1), add(zxp.m1, zxm.p1));
+    const Vec dyz = add(add(zym.m1, zyp.p1), add(zyp.m1, zym.p1));
+    const Vec diag = add(add(dxy, dxz), dyz);
+    Vec out = add(add(_mm256_sub_ps(mul(c0, z.c), at(q)), add(mul(c1, ring1), mul(c2, ring2))), mul(c3, diag));
+    if constexpr (decltype(blended)::value) {
+      const Vec theta = _mm256_max_ps(theta_xy, at(blend.theta_z));  // theta_xy > theta_z ? theta_xy : theta_z
+      const __mmask8 on = _mm256_cmp_ps_mask(theta, _mm256_setzero_ps(), _CMP_GT_OQ);
+      const Vec srl_minus_me4 = add(add(add(mul(d0, z.c), mul(d1, ring1)), mul(d2, ring2)), mul(d3, diag));
+      out = _mm256_mask_add_ps(out, on, out, mul(theta, srl_minus_me4));
+    }
+    if constexpr (!kEdge)
+      _mm256_storeu_ps(q + k, out);
+    else
+      _mm256_mask_storeu_ps(q + k, static_cast<__mmask8>((1u << std::min(8L, end - k)) - 1u), out);
+  };
+  using Yes = std::true_type;
+  using No = std::false_type;
+  // Whole vectors whose next vector (k + 8 .. k + 15) is still within the row's values; the blend
+  // is skipped on the vectors within [plain_lo, plain_hi) only.
+  long k = 0;
+  const long whole_end = row_end - 16;
+  for (; k <= whole_end && !(k >= blend.plain_lo && k + 8 <= blend.plain_hi); k += 8) step(k, No{}, Yes{});
+  for (; k <= whole_end && k + 8 <= blend.plain_hi; k += 8) step(k, No{}, No{});
+  for (; k <= whole_end; k += 8) step(k, No{}, Yes{});
+  for (; k < end; k += 8) step(k, Yes{}, Yes{});
+}
+#endif
 
 // One z row of the srl bulk update, cloned the same way. Neighbours are summed in mirror pairs.
 __attribute__((target_clones("avx512f", "avx2", "default")))
@@ -212,6 +347,18 @@ void Engine::update_bulk_me4(const Box& box, bool pml_rows) {
     }
   // srl - me4 at a cell, from p^n alone (p^{n-1} cancels): the blend's correction.
   const float d0 = op_.c1() - c.c0, d1 = op_.lambda2() - c.c1, d2 = -c.c2, d3 = -c.c3;
+#if CLATTER_ME4_AVX512VL
+  static const bool avx512vl = __builtin_cpu_supports("avx512vl");
+  // Rows outside the x-y blend skip it on the first stretch of cells between z runs (the runs
+  // are at the rows' ends; the kernel blends any other run exactly, only it does not skip).
+  long plain_lo = 0, plain_hi = nk;
+  if (!z_runs.empty() && z_runs[0].first == 0) {
+    plain_lo = z_runs[0].second;
+    plain_hi = z_runs.size() > 1 ? z_runs[1].first : nk;
+  } else if (!z_runs.empty()) {
+    plain_hi = z_runs[0].first;
+  }
+#endif
   // The stencil reads five x planes. Sweeping the rows in y tiles keeps their five-plane working
   // set (~256 KiB) in cache, so each value of p^n comes from memory about once.
   const long row_bytes = static_cast<long>(nk + 4) * static_cast<long>(sizeof(float));
@@ -223,13 +370,22 @@ void Engine::update_bulk_me4(const Box& box, bool pml_rows) {
       const int j1 = std::min(j0 + tile, box.hi[1]);
       for (int j = j0; j < j1; ++j) {
         const long row = layout.at(i, j, box.lo[2]);
-        me4_row(now_.data() + row, next_.data() + row, sx, sy, nk, c);
         const float blend_xy = std::max(blend[0][static_cast<std::size_t>(i)], blend[1][static_cast<std::size_t>(j)]);
-        if (blend_xy > 0.0f) {
-          blend_row(now_.data() + row, next_.data() + row, sx, sy, 0, nk, blend_z, blend_xy, d0, d1, d2, d3);
-        } else {
-          for (const auto& [k0, k1] : z_runs)
-            blend_row(now_.data() + row, next_.data() + row, sx, sy, k0, k1, blend_z, 0.0f, d0, d1, d2, d3);
+#if CLATTER_ME4_AVX512VL
+        if (avx512vl) {
+          const bool all = blend_xy > 0.0f;
+          me4_row_avx512vl(now_.data() + row, next_.data() + row, sx, sy, nk, c,
+                           {blend_z, blend_xy, d0, d1, d2, d3, all ? 0 : plain_lo, all ? 0 : plain_hi});
+        } else
+#endif
+        {
+          me4_row(now_.data() + row, next_.data() + row, sx, sy, nk, c);
+          if (blend_xy > 0.0f) {
+            blend_row(now_.data() + row, next_.data() + row, sx, sy, 0, nk, blend_z, blend_xy, d0, d1, d2, d3);
+          } else {
+            for (const auto& [k0, k1] : z_runs)
+              blend_row(now_.data() + row, next_.data() + row, sx, sy, k0, k1, blend_z, 0.0f, d0, d1, d2, d3);
+          }
         }
         if (pml_rows) op_.pml().update_z_rows(pml_, now_.data(), next_.data(), i, j, j + 1);
       }
