@@ -5,6 +5,7 @@
 // band of 7-point cells around them, and the PML, with the coefficients of an Operator. The Engine owns
 // the fields; its halo is filled through a HaloExchange (core/halo_exchange.hpp), so it runs the
 // same under MPI, between serial blocks in a test, or alone.
+#include <cstddef>
 #include <vector>
 
 #include "core/halo_exchange.hpp"
@@ -31,11 +32,14 @@ class Engine {
   void fill_z_mirror_ghosts();
   void fill_mirror_ghosts();
   void keep_cut_cell_old();
-  // With pml_rows, also the rows of the PML's z layers within the box's x-y extent (Pml::update_z_rows).
-  void update_bulk(const Box& box, bool pml_rows = false);
-  void update_bulk_srl(const Box& box, bool pml_rows);
-  void update_bulk_me4(const Box& box, bool pml_rows);
-  void update_cut_cells(float psi);
+  // The interior (interior = true) also takes, as it goes, the rows of the PML's z layers within its
+  // x-y extent (Pml::update_z_rows) and, plane by plane, its cut cells, driven by psi.
+  void update_bulk(const Box& box, bool interior = false, float psi = 0.0f);
+  void update_bulk_srl(const Box& box, bool interior, float psi);
+  void update_bulk_me4(const Box& box, bool interior, float psi);
+  void update_interior_cut_cells(int i, float psi);
+  // The cut cells of the given slots of op_.cut_cells().
+  void update_cut_cells(float psi, const std::size_t* first, const std::size_t* last);
   void add_point_source(float psi, float psi_smooth);
 
   const Operator& op_;
@@ -45,6 +49,9 @@ class Engine {
   PmlState pml_;
   std::vector<float> cut_body_;  // the started field's column of the operator's body_all
   std::vector<float> cut_old_;   // p^{n-1} of the cut cells, kept before the bulk overwrites it
+  // Slots of the cut cells within the inner box, plane by plane (those of plane inner.lo[0] + n
+  // from interior_cut_start_[n] on), and of the others, updated after the shell and the PML.
+  std::vector<std::size_t> interior_cut_, interior_cut_start_, other_cut_;
 };
 
 }  // namespace clatter::kernels::fdtd
