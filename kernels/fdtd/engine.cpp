@@ -41,7 +41,7 @@ inline Me4Sums me4_sums(const float* p, long sx, long sy, int k) {
 // One z row of the me4 bulk update where the CPU has no AVX-512VL (me4_row_avx512vl below, the
 // same arithmetic, where it has). Cloned for AVX2 and the baseline: wider vectors divide its 25
 // loads per cell. No AVX-512 clone: the rows start 4 floats apart from a cache line (260-float
-// rows), so nearly every 64-byte load of the 25 splits over two lines, and on Zen 5 the 256-bit
+// rows), so nearly every 64-byte load of the 25 splits over two lines, and on Zen 4 the 256-bit
 // clone ran the whole step about 10 % faster (docs/benchmarks.md). Each cell's arithmetic is the
 // same in every clone (no FMA contraction, -ffp-contract=off), so the bits do not depend on the CPU.
 __attribute__((target_clones("avx2", "default")))
