@@ -3,11 +3,12 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <unordered_map>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
+#include "core/progress.hpp"
 #include "core/stage_log.hpp"
 #include "io/scene.hpp"
 #include "kernels/fdtd/listeners.hpp"
@@ -151,6 +152,12 @@ double l2(const std::vector<double>& x) {
 // amplitude, 1 % of its energy (refine_directions).
 double floor_from_strongest(double strongest_l2) { return 0.1 * strongest_l2; }
 
+// Hearing a task's directions takes minutes on its group's rank 0 alone: it polls SIGTERM and
+// SIGINT per far field and per direction, and run_solve stops the group together.
+void stop_if_interrupted() {
+  if (interrupt_requested()) throw Interrupted("interrupted while hearing through the Kirchhoff surface");
+}
+
 void add_strength(FarFieldStrength& s, double l2) {
   s.strongest_l2 = std::max(s.strongest_l2, l2);
   s.energy += l2 * l2;
@@ -221,8 +228,7 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
     for (const auto& v : near) series.push_back(v.data());
     FarFieldStrength strength_3;
     // Hearing is most of a task's time (docs/pan.md "Cost"): its progress, like the time loop's.
-    const auto t_hear = std::chrono::steady_clock::now();
-    auto last_report = t_hear;
+    ProgressTimer progress(progress_interval_s);
     for (int o = 0; o < octants; ++o) {
       auto& field = out.proxy.field(f, o);
       const DirectionRefinement set =
@@ -244,14 +250,12 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
         continue;
       }
       for (std::size_t v = 0; v < set.mesh.size(); ++v) {
-        const auto now = std::chrono::steady_clock::now();
-        if (progress_interval_s > 0 && std::chrono::duration<double>(now - last_report).count() >= progress_interval_s) {
-          last_report = now;
-          const double elapsed = std::chrono::duration<double>(now - t_hear).count();
+        stop_if_interrupted();
+        if (progress.due()) {
           const double done = (static_cast<double>(o) + static_cast<double>(v) / static_cast<double>(set.mesh.size())) / octants;
-          spdlog::info("pan: {}, field {}: hearing direction {}/{}{} at {} radii and infinity, ETA {:.0f} s", body.label(), f,
-                       v + 1, set.mesh.size(), octants == 8 ? fmt::format(" of octant {}/8", o + 1) : std::string(), m,
-                       elapsed * (1 - done) / std::max(done, 1e-9));
+          spdlog::info("pan: {}, field {}: hearing direction {}/{}{} at {} radii and infinity{}", body.label(), f, v + 1,
+                       set.mesh.size(), octants == 8 ? fmt::format(" of octant {}/8", o + 1) : std::string(), m,
+                       done > 0 ? fmt::format(", ETA {:.0f} s", progress.eta_s(done)) : std::string());
         }
         // Stored over the field's symmetry zeros (kernels/pan/directions.hpp), heard off the planes;
         // an entry of eight octants as it is, in the octant's own direction.
@@ -334,8 +338,10 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
   auto& mesh = out.mesh;
   auto at = [&](const pan::LatticePoint& p) -> const std::vector<double>& {
     auto it = out.far_fields.find(pan::lattice_key(p));
-    if (it == out.far_fields.end())
+    if (it == out.far_fields.end()) {
+      stop_if_interrupted();
       it = out.far_fields.emplace(pan::lattice_key(p), stored_far_field(spec, proxy, surface, mesh.direction(p), octant)).first;
+    }
     return it->second;
   };
   // The unrefined mesh is the layout: the field's strength there (of p = q x its symmetry zeros)

@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
+#include "core/progress.hpp"
 #include "core/stage_log.hpp"
 #include "io/h5.hpp"
 #include "io/provenance.hpp"
@@ -31,25 +32,17 @@ namespace {
 
 class Progress {
  public:
-  Progress(double interval_s, long long total_steps, long long cells)
-      : interval_s_(interval_s), total_(total_steps), cells_(cells), start_(Clock::now()), last_(start_) {}
+  Progress(double interval_s, long long total_steps, long long cells) : timer_(interval_s), total_(total_steps), cells_(cells) {}
   void step(long long done, int field, int n_fields) {
-    if (interval_s_ <= 0) return;
-    const auto now = Clock::now();
-    if (std::chrono::duration<double>(now - last_).count() < interval_s_) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    if (!timer_.due()) return;
     const double d = static_cast<double>(done), total = static_cast<double>(total_);
     spdlog::info("solve: field {}/{}, step {}/{} ({:.1f} %), {:.3g} cell-updates/s, ETA {:.1f} s", field, n_fields,
-                 done, total_, 100.0 * d / total, static_cast<double>(cells_) * d / elapsed,
-                 elapsed * (total - d) / std::max(d, 1.0));
+                 done, total_, 100.0 * d / total, static_cast<double>(cells_) * d / timer_.elapsed_s(), timer_.eta_s(d / total));
   }
 
  private:
-  using Clock = std::chrono::steady_clock;
-  double interval_s_;
+  ProgressTimer timer_;
   long long total_, cells_;
-  Clock::time_point start_, last_;
 };
 
 // Every rank of the solve agrees every kHealthCheckSteps steps (one small allreduce, far below a
@@ -133,16 +126,26 @@ FieldRecord solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fd
     packs = mpi::gather(comm, surface->pack());
     surface.reset();
   }
-  if (mpi::rank(comm) != 0) return out;
-  Stage stage("Kirchhoff surface");
-  const auto t_surface = std::chrono::steady_clock::now();
-  const fdtd::SurfaceField surface_field =
-      fdtd::assemble_surface(problem, spec.kirchhoff, spec.n_samples, -spec.i_time_zero * problem.dt_s, packs);
-  packs.clear();
-  for (const auto& d : spec.far_directions) out.far.push_back(fdtd::far_field(surface_field, d));
-  for (const auto& x : spec.surface_listeners_m) out.near.push_back(fdtd::pressure_at(surface_field, x));
-  if (hook) hook(fi, surface_field);
-  out.surface_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_surface).count();
+  // Rank 0 hears through the surface (most of a PAN task's time) while the group's other ranks wait
+  // here. A SIGTERM meanwhile, which the hook polls (Interrupted), stops every rank together.
+  int interrupted = 0;
+  if (mpi::rank(comm) == 0) {
+    Stage stage("Kirchhoff surface");
+    const auto t_surface = std::chrono::steady_clock::now();
+    const fdtd::SurfaceField surface_field =
+        fdtd::assemble_surface(problem, spec.kirchhoff, spec.n_samples, -spec.i_time_zero * problem.dt_s, packs);
+    packs.clear();
+    for (const auto& d : spec.far_directions) out.far.push_back(fdtd::far_field(surface_field, d));
+    for (const auto& x : spec.surface_listeners_m) out.near.push_back(fdtd::pressure_at(surface_field, x));
+    try {
+      if (hook) hook(fi, surface_field);
+    } catch (const Interrupted&) {
+      interrupted = 1;
+    }
+    out.surface_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_surface).count();
+  }
+  if (mpi::all_reduce_max(comm, interrupted))
+    throw Interrupted(fmt::format("field {}: interrupted while hearing through the Kirchhoff surface", problem.field));
   return out;
 }
 

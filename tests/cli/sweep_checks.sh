@@ -4,7 +4,7 @@
 # resumed; the interrupted run leaves only complete task files and releases its locks; a task that
 # fails (an I/O error: its result path is taken by a folder) is recorded, the sweep goes on, the
 # exit code is 4, `info` lists it, and --resume retries it into the same bank; --resume on a complete
-# bank does nothing.
+# bank does nothing; (f) a SIGTERM while a task hears through its Kirchhoff surface stops it there.
 # Usage: sweep_checks.sh CLATTER_BANK CONFIG SCRATCH MPIEXEC...
 set -uo pipefail
 # shellcheck source=interrupt_lib.sh
@@ -87,3 +87,25 @@ echo "(e) failed, then retried:  $(sum e.h5)"
 ref=$(sum a.h5)
 for f in b.h5 c.h5 d.h5 e.h5; do [[ $(sum $f) == "$ref" ]] || fail "$f differs from a.h5"; done
 echo "all 5 banks have the same content hash $ref"
+
+# (f) SIGTERM while a task hears through its Kirchhoff surface, which its group's rank 0 does alone
+# while the other waits: the cigar's field 1 at the paper's 6.5 mm cells and 0.1 ms pulse, one group
+# of 2 ranks, about 1700 directions to hear (minutes). The signal goes out once the first line of
+# the hearing's progress is in the log; the task must stop there (exit 3, no task file), not hear
+# to the end and land.
+paper=(--set 'proxies.list_m=[[0.025, 0.025]]' --set 'solve.fields=[1]' --set grid.dx_m=0.0065
+       --set time.dt_s=1.0416666666666666e-05 --set pulse.h_s=0.0001 --set fit.max_directions=2500)
+"${mpiexec[@]}" -n 2 "$bank" pan -c "$config" "${paper[@]}" --ranks-per-task 2 --progress-interval 0.2 -o f.h5 > f.log 2>&1 &
+launcher=$!
+for _ in $(seq 1800); do grep -q "hearing direction" f.log && break; sleep 0.1; done
+grep -q "hearing direction" f.log || fail "(f) no hearing progress within 180 s: $(tail -3 f.log)"
+ranks=$(for p in $(descendants "$launcher"); do [[ $(ps -o comm= -p "$p") == clatter-bank ]] && echo "$p"; done)
+[[ -n $ranks ]] || fail "(f) the sweep ended before it could be signalled"
+# shellcheck disable=SC2086
+kill -TERM $ranks
+wait "$launcher"
+code=$?
+[[ $code -eq 3 ]] || fail "(f) exit $code after SIGTERM while hearing, expected 3: $(tail -3 f.log)"
+[[ -z $(compgen -G 'f.h5.tasks/p*.h5') && ! -e f.h5 ]] || fail "(f) the interrupted task landed: it heard to the end"
+grep -q "interrupted by signal 15" f.log || fail "(f) exit 3 but no 'interrupted by signal 15' in the log: $(tail -3 f.log)"
+echo "(f) interrupted while hearing, after $(grep -c 'hearing direction' f.log) progress lines: exit 3, no task file"
