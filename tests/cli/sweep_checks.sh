@@ -89,16 +89,16 @@ for f in b.h5 c.h5 d.h5 e.h5; do [[ $(sum $f) == "$ref" ]] || fail "$f differs f
 echo "all 5 banks have the same content hash $ref"
 
 # (f) SIGTERM while a task hears through its Kirchhoff surface, which its group's rank 0 does alone
-# while the other waits: the cigar's field 1 at the paper's 6.5 mm cells and 0.1 ms pulse, one group
+# while the other waits: the cigar's field 1 at 1 cm cells and a 0.15 ms pulse (near the paper's), one group
 # of 2 ranks, about 1700 directions to hear (minutes). The signal goes out once the first line of
 # the hearing's progress is in the log; the task must stop there (exit 3, no task file), not hear
 # to the end and land.
-paper=(--set 'proxies.list_m=[[0.025, 0.025]]' --set 'solve.fields=[1]' --set grid.dx_m=0.0065
-       --set time.dt_s=1.0416666666666666e-05 --set pulse.h_s=0.0001 --set fit.max_directions=2500)
+paper=(--set 'proxies.list_m=[[0.025, 0.025]]' --set 'solve.fields=[1]' --set grid.dx_m=0.01
+       --set time.dt_s=1.6e-05 --set pulse.h_s=0.00015 --set fit.max_directions=2500)
 "${mpiexec[@]}" -n 2 "$bank" pan -c "$config" "${paper[@]}" --ranks-per-task 2 --progress-interval 0.2 -o f.h5 > f.log 2>&1 &
 launcher=$!
-for _ in $(seq 1800); do grep -q "hearing direction" f.log && break; sleep 0.1; done
-grep -q "hearing direction" f.log || fail "(f) no hearing progress within 180 s: $(tail -3 f.log)"
+for _ in $(seq 6000); do grep -q "hearing direction" f.log && break; kill -0 "$launcher" 2>/dev/null || break; sleep 0.1; done
+grep -q "hearing direction" f.log || fail "(f) no hearing progress within 600 s: $(tail -3 f.log)"
 ranks=$(for p in $(descendants "$launcher"); do [[ $(ps -o comm= -p "$p") == clatter-bank ]] && echo "$p"; done)
 [[ -n $ranks ]] || fail "(f) the sweep ended before it could be signalled"
 # shellcheck disable=SC2086
