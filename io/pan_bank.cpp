@@ -36,6 +36,13 @@ namespace {
 // 1.5 points (the elongated proxy's field 4: 1.3 -> 2.5 %); at 1/4 they are within 0.3 points of
 // the uncoded bank's, for a bank 25 % larger than at 1 and half the uncoded one.
 constexpr double kCodedEpsilon = 0.25;
+// A made vertex's peak in that rule is at least this share of its field's largest: a direction far
+// weaker than the field's strongest is coded against it. The values are q, the field over its
+// symmetry zeros (format 5), whose largest lie near the planes where p is small; at a tenth (the
+// rule until 2026-12-07) the cigar's swing lost 6.5 % in directions 1-3 % as loud as its loudest,
+// coded against a floor far above them; at a hundredth it holds 2.9 % there for 9 % more bytes
+// (docs/pan.md, "The refinement's floor").
+constexpr double kCodedFloor = 0.01;
 
 // Quadratic weights of a parent's six nodes at child c's node k (model::kChildCorners).
 std::array<double, 6> split_weights(std::size_t c, std::size_t k) {
@@ -146,13 +153,12 @@ PackedCoefficients pack_coefficients(const PanBank& bank) {
         for (std::size_t e = 0; e < t.index.size(); ++e)
           for (std::size_t k = 0; k < n_values; ++k) coded[t.index[e] * n_values + k] += t.value[e * n_values + k];
         // Kept: a root vertex's fitted coefficients; a made vertex's where a difference reaches
-        // kCodedEpsilon times epsilon times its own peak |R p|, or a tenth of the field's (the
-        // refinement's floor).
+        // kCodedEpsilon times epsilon times its own peak |R p|, or kCodedFloor of the field's.
         std::vector<std::uint32_t> kept;
         if (pred[v].parent < 0) {
           kept = t.index;
         } else {
-          const double small = kCodedEpsilon * h.epsilon * std::max(peak[v], 0.1 * field_peak);
+          const double small = kCodedEpsilon * h.epsilon * std::max(peak[v], kCodedFloor * field_peak);
           for (std::uint32_t j = 0; j < h.length; ++j)
             for (std::size_t k = 0; k < n_values; ++k)
               if (std::abs(coded[j * n_values + k]) >= small && std::abs(coded[j * n_values + k]) > 0) {
@@ -200,7 +206,7 @@ PackedCoefficients pack_coefficients(const PanBank& bank) {
 // given: a layout vertex's stored coefficients as they are; a made vertex's prediction plus its
 // differences, of which the evaluator gets the coefficients the fit's rule keeps (kernels/pan/fit.hpp)
 // at kCodedEpsilon times epsilon: R p at some radius or at infinity (F + D_k, or F) reaching that
-// fraction of its peak, or of a tenth of the field's. InputError prefixed by `where`.
+// fraction of its peak, or of kCodedFloor of the field's. InputError prefixed by `where`.
 void unpack_field(const PanBankHeader& h, const PackedCoefficients& c, std::size_t& row, model::PanField& out,
                   const std::string& where) {
   if (out.directions.vertices.empty()) return;
@@ -242,7 +248,7 @@ void unpack_field(const PanBankHeader& h, const PackedCoefficients& c, std::size
   const double field_peak = *std::max_element(peak.begin(), peak.end());
   for (std::size_t v = 0; v < out.terms.size(); ++v) {
     if (pred[v].parent < 0) continue;
-    const double small = kCodedEpsilon * h.epsilon * std::max(peak[v], 0.1 * field_peak);
+    const double small = kCodedEpsilon * h.epsilon * std::max(peak[v], kCodedFloor * field_peak);
     auto& terms = out.terms[v];
     for (std::uint32_t n = 0; n < h.length; ++n) {
       const double* x = &decoded[v][n * n_values];
