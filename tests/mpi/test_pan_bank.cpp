@@ -59,6 +59,30 @@ io::Config demo_config() {
   return config;
 }
 
+// One proxy's spec for one field of `config`, and the solve around that proxy.
+struct OneField {
+  jobs::PanSpec spec;
+  jobs::SolveSpec solve;
+};
+OneField one_field(io::Config config, const std::string& b_c, double b_m, double c_m, int field) {
+  config.set("proxies.list_m=[[" + b_c + "]]");
+  config.set("solve.fields=[" + std::to_string(field) + "]");
+  OneField out{jobs::make_pan_spec(config), {}};
+  out.solve = out.spec.solve;
+  out.solve.problem.body = {out.spec.a_m, b_m, c_m};
+  return out;
+}
+
+// A direction uniform in the positive octant's cube, normalized: with probability one no vertex
+// of any direction set.
+std::array<double, 3> random_octant_direction(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::array<double, 3> d{u(rng), u(rng), u(rng)};
+  const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  for (double& x : d) x /= n;
+  return d;
+}
+
 SphereProxy sphere_proxy(const std::string& file) {
   io::Config config = demo_config();
   config.set("proxies.list_m=[[0.5, 0.5]]");
@@ -376,12 +400,8 @@ TEST(PanDirections, RefinementHoldsTheFarFieldBetweenItsDirectionsAtTheDemoResol
   // Issue 32's adaptive direction sets (not yet in the bank): the (0.2625, 0.12) proxy's field 4
   // far field, refined at split points to 2 %, against itself at random directions (no vertex of
   // any layout). The paper's 45 directions miss many of them by over 5 % (so the check can fail).
-  io::Config config = demo_config();
-  config.set("proxies.list_m=[[0.2625, 0.12]]");
-  config.set("solve.fields=[4]");
-  const auto spec = jobs::make_pan_spec(config);
-  jobs::SolveSpec s = spec.solve;
-  s.problem.body = {spec.a_m, 0.2625, 0.12};
+  const OneField one = one_field(demo_config(), "0.2625, 0.12", 0.2625, 0.12, 4);
+  const jobs::PanSpec& spec = one.spec;
   std::vector<double> adaptive, paper;
   std::size_t directions = 0;
   auto hook = [&](std::size_t, const kernels::fdtd::SurfaceField& surface) {
@@ -398,11 +418,8 @@ TEST(PanDirections, RefinementHoldsTheFarFieldBetweenItsDirectionsAtTheDemoResol
     const kernels::pan::DirectionMesh uniform(spec.divisions, 0);
     const double floor = jobs::far_field_floor(spec, 0, surface);
     std::mt19937 rng(5);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     for (int i = 0; i < 48; ++i) {
-      std::array<double, 3> d{u(rng), u(rng), u(rng)};
-      const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      for (double& x : d) x /= n;
+      const auto d = random_octant_direction(rng);
       const auto truth = jobs::aligned_far_field(spec, 0, surface, d);
       // The adaptive set as the bank interpolates it (over the symmetry zeros, then times them);
       // the paper's 45 directions as the paper does (the far field itself).
@@ -419,7 +436,7 @@ TEST(PanDirections, RefinementHoldsTheFarFieldBetweenItsDirectionsAtTheDemoResol
       }
     }
   };
-  jobs::run_solve(MPI_COMM_WORLD, s, 0.0, hook);
+  jobs::run_solve(MPI_COMM_WORLD, one.solve, 0.0, hook);
   if (!root()) return;
   const double worst = *std::max_element(adaptive.begin(), adaptive.end());
   const double paper_worst = *std::max_element(paper.begin(), paper.end());
@@ -443,23 +460,17 @@ TEST(PanDirections, RefinementHoldsTheFarFieldWhereAListenerHearsIt) {
   config.set("pulse.h_s=0.0002");
   config.set("grid.dx_m=0.02");
   config.set("time.dt_s=2.0833333333333333e-05");
-  config.set("proxies.list_m=[[0.025, 0.025]]");
-  config.set("solve.fields=[5]");
-  const auto spec = jobs::make_pan_spec(config);
-  jobs::SolveSpec s = spec.solve;
-  s.problem.body = {spec.a_m, 0.025, 0.025};
+  const OneField one = one_field(config, "0.025, 0.025", 0.025, 0.025, 5);
+  const jobs::PanSpec& spec = one.spec;
   std::vector<double> misses, own;
   std::size_t directions = 0;
   auto hook = [&](std::size_t, const kernels::fdtd::SurfaceField& surface) {
     const auto refined = jobs::refine_directions(spec, 0, surface, 0.04, 3, 5000);
     directions = refined.mesh.size();
     std::mt19937 rng(7);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<double> sum(spec.length);
     for (int i = 0; i < 64; ++i) {
-      std::array<double, 3> d{u(rng), u(rng), u(rng)};
-      const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      for (double& x : d) x /= n;
+      const auto d = random_octant_direction(rng);
       const auto truth = jobs::aligned_far_field(spec, 0, surface, d);
       kernels::pan::blend(refined.mesh.locate(d), [&](std::size_t v) {
         return jobs::stored_far_field(spec, 0, surface, refined.mesh.direction(v));
@@ -474,7 +485,7 @@ TEST(PanDirections, RefinementHoldsTheFarFieldWhereAListenerHearsIt) {
       own.push_back(std::sqrt(den));
     }
   };
-  jobs::run_solve(MPI_COMM_WORLD, s, 0.0, hook);
+  jobs::run_solve(MPI_COMM_WORLD, one.solve, 0.0, hook);
   if (!root()) return;
   const double strongest = *std::max_element(own.begin(), own.end());
   double worst = 0;
