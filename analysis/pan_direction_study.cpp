@@ -8,7 +8,7 @@
 // instead, each a relative L2 over the record against R p heard there through the surface:
 //   radial       the radial model (a cubic in 1/R through the far field and the fit's radii) at
 //                the point's own direction, no interpolation between directions;
-//   dir_far      the far field interpolated over the refined set (test_points at the tolerance)
+//   dir_far      the far field interpolated over the set refined to --tolerance
 //                at the point's direction, against the far field there;
 //   dir_here     R p at the point's radius interpolated the same way from the six nodes of the
 //                leaf holding the direction, each heard at that radius.
@@ -64,15 +64,6 @@ std::vector<double> stored_series(const jobs::PanSpec& spec, const fdtd::Surface
   return out;
 }
 
-double relative_l2(const std::vector<double>& x, const std::vector<double>& truth) {
-  double num = 0, den = 0;
-  for (std::size_t n = 0; n < x.size(); ++n) {
-    num += (x[n] - truth[n]) * (x[n] - truth[n]);
-    den += truth[n] * truth[n];
-  }
-  return std::sqrt(num / std::max(den, 1e-300));
-}
-
 struct Parts {
   double r_m = 0, radial = 0, dir_far = 0, dir_here = 0;
 };
@@ -97,7 +88,7 @@ Parts error_parts(const jobs::PanSpec& spec, const fdtd::SurfaceField& surface, 
     const auto at_radius = stored_series(spec, surface, d, spec.radii_m[value - 1], samples);
     for (std::size_t n = 0; n < radial.size(); ++n) radial[n] += l * (at_radius[n] - far[n]);
   }
-  out.radial = relative_l2(radial, truth);
+  out.radial = jobs::far_field_miss(radial, truth, 0.0);
   // Between directions, at infinity and at R.
   const pan::DirectionWeights dw = mesh.locate(d);
   std::vector<double> far_sum(far.size(), 0.0), here_sum(far.size(), 0.0);
@@ -110,8 +101,8 @@ Parts error_parts(const jobs::PanSpec& spec, const fdtd::SurfaceField& surface, 
       here_sum[n] += wk * h[n];
     }
   }
-  out.dir_far = relative_l2(far_sum, far);
-  out.dir_here = relative_l2(here_sum, truth);
+  out.dir_far = jobs::far_field_miss(far_sum, far, 0.0);
+  out.dir_here = jobs::far_field_miss(here_sum, truth, 0.0);
   return out;
 }
 

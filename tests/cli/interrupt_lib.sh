@@ -4,6 +4,8 @@
 # Only this sweep's ranks: the clatter-bank processes below the launcher (a subshell, then
 # mpiexec), never those of tests running beside this one.
 descendants() { local c; for c in $(pgrep -P "$1"); do echo "$c"; descendants "$c"; done; }
+# bank_ranks LAUNCHER_PID: the clatter-bank processes below the launcher.
+bank_ranks() { local p; for p in $(descendants "$1"); do [[ $(ps -o comm= -p "$p") == clatter-bank ]] && echo "$p"; done; }
 # interrupt_sweep LAUNCHER_PID GLOB LOG: waits up to 60 s for a task file matching GLOB, sends
 # SIGTERM to the launcher's clatter-bank ranks, waits for the launcher and requires exit 3
 # (kExitInterrupted). Prints why and returns 1 when no task file landed, when no rank was left to
@@ -16,7 +18,7 @@ interrupt_sweep() {
     compgen -G "$glob" > /dev/null && landed=1 && break
     sleep 0.05
   done
-  ranks=$(for p in $(descendants "$launcher"); do [[ $(ps -o comm= -p "$p") == clatter-bank ]] && echo "$p"; done)
+  ranks=$(bank_ranks "$launcher")
   if [[ -z $ranks ]]; then
     wait "$launcher"
     code=$?

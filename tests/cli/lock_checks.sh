@@ -28,10 +28,11 @@ pan() { "$bank" pan -c "$config" "${sets[@]}" "$@" < /dev/null; }
 pan_np2() { "${mpiexec[@]}" -n 2 "$bank" pan -c "$config" "${sets[@]}" "$@" < /dev/null; }
 sum() { "$bank" checksum "$1" | cut -d' ' -f1; }
 holder_pid() { sed -n 's/^pid=//p' "$1"; }
-# The clatter-bank processes below launcher $1 (a subshell, then mpiexec): all ranks of that run,
-# never those of tests running beside this one. Stopping rank 0 alone would leave rank 1 working.
-descendants() { local c; for c in $(pgrep -P "$1"); do echo "$c"; descendants "$c"; done; }
-ranks_of() { for p in $(descendants "$1"); do [[ $(ps -o comm= -p "$p") == clatter-bank ]] && echo "$p"; done; }
+# bank_ranks LAUNCHER: the clatter-bank processes below a launcher (a subshell, then mpiexec), all
+# ranks of that run, never those of tests running beside this one. Stopping rank 0 alone would
+# leave rank 1 working.
+# shellcheck source=interrupt_lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/interrupt_lib.sh"
 wait_for() {  # wait_for PATH: until it exists (30 s at most)
   for _ in $(seq 600); do [[ -e $1 ]] && return 0; sleep 0.05; done
   fail "$1 never appeared"
@@ -75,7 +76,7 @@ first=$!
 launched+=("$first")
 wait_for a.h5.tasks.lock
 holder=$(holder_pid a.h5.tasks.lock)
-ranks=$(ranks_of "$first")
+ranks=$(bank_ranks "$first")
 [[ $ranks == *"$holder"* ]] || fail "(a) the lock's PID $holder is not one of the ranks ($ranks)"
 kill -STOP $ranks
 refused a2.log "second pan on the same output" pan -o a.h5
@@ -98,7 +99,7 @@ for attempt in 1 2 3; do
   launched+=("$first")
   wait_for b.h5.tasks.lock
   holder=$(holder_pid b.h5.tasks.lock)
-  ranks=$(ranks_of "$first")  # before its first task ends, so only the wait below is in the race
+  ranks=$(bank_ranks "$first")  # before its first task ends, so only the wait below is in the race
   for _ in $(seq 3000); do [[ -e b.h5.tasks/p000-f1.h5 ]] && break; sleep 0.01; done
   kill -STOP $ranks 2> /dev/null  # mid-sweep, unless it has already finished
   if [[ -e b.h5.tasks.lock && -e b.h5.tasks/p000-f1.h5 ]]; then

@@ -99,7 +99,7 @@ paper=(--set 'proxies.list_m=[[0.025, 0.025]]' --set 'solve.fields=[1]' --set gr
 launcher=$!
 for _ in $(seq 6000); do grep -q "hearing direction" f.log && break; kill -0 "$launcher" 2>/dev/null || break; sleep 0.1; done
 grep -q "hearing direction" f.log || fail "(f) no hearing progress within 600 s: $(tail -3 f.log)"
-ranks=$(for p in $(descendants "$launcher"); do [[ $(ps -o comm= -p "$p") == clatter-bank ]] && echo "$p"; done)
+ranks=$(bank_ranks "$launcher")
 [[ -n $ranks ]] || fail "(f) the sweep ended before it could be signalled"
 # shellcheck disable=SC2086
 kill -TERM $ranks
