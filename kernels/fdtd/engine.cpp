@@ -78,7 +78,7 @@ void blend_row(const float* __restrict p, float* __restrict q, long sx, long sy,
 // memory (GCC 12 spilled with AVX2's 16). The arithmetic of each cell is me4_row's and
 // blend_row's, operation for operation (no FMA), so the bits are the same.
 using Vec = __m256;
-#define CLATTER_AVX512VL_FN __attribute__((target("avx512vl"))) [[gnu::always_inline]] inline
+#define CLATTER_AVX512VL_FN __attribute__((target("avx512vl"), always_inline)) inline
 
 // r[a, a + 8) with the lanes that fall outside r[lo, hi) not read (0): the ends of a row.
 template <bool kEdge>
