@@ -11,6 +11,7 @@
 #include "io/mesh.hpp"
 #include "banks/medium_keys.hpp"
 #include "kernels/fdtd/mesh_body.hpp"
+#include "kernels/mass_properties.hpp"
 #include "kernels/fdtd/problem.hpp"
 #include "kernels/pan/directions.hpp"
 #include "kernels/pan/fit.hpp"
@@ -385,6 +386,14 @@ model::PanBankHeader pan_header(const PanSpec& spec) {
   h.divisions = 2;  // every set refines the 2-division octant: the layout's directions are coded hierarchically too
   h.max_levels = spec.layout_levels + spec.direction_levels;
   return h;
+}
+
+double mesh_width_cells(const PanBody& body, double dx_m) {
+  if (!body.mesh) throw std::logic_error("mesh_width_cells: not a mesh entry");
+  const auto props = kernels::mesh_mass_properties(body.mesh->vertices_m(), body.mesh->triangles());
+  // Unit density: the fit's semi-axes do not depend on it.
+  const kernels::ProxyFit fit = kernels::fit_proxy(props.inertia_per_density_m5, props.volume_m3, props.volume_m3);
+  return 2 * fit.b_m / dx_m;
 }
 
 std::vector<PanTask> pan_tasks(const PanSpec& spec) {

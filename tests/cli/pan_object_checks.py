@@ -8,7 +8,7 @@ by the key's start at the mesh's own size (--scale 1/scale) and the held-out sum
 logged; `plan --kind pan-object` on one and eight octants; then a scene's mesh objects
 (objects.scene), each mesh once. Usage: pan_object_checks.py
 BIN_DIR MPIEXEC WORKDIR"""
-import math, os, shutil, subprocess, sys
+import math, os, re, shutil, subprocess, sys
 
 import h5py
 
@@ -40,6 +40,15 @@ check(r.returncode == 0, "pan-object on 2 ranks exits 0")
 log = r.stdout + r.stderr
 check("1 meshes x 1 fields = 1 tasks" in log, "the sweep names 1 mesh x 1 field")
 check("pan-object: held out: worst" in log, "the merge logs the held-out check")
+check("cells wide at grid.dx_m" not in log, "no width warning for the coin (its equivalent ellipsoid about 25 cells across)")
+# A strip 10 x 1 x 0.3 cm is about 3 cells across at the demo's 4 cm once scaled to A: its
+# added mass would be far too small (docs/pan.md "Proxy validation"), so pan-object warns.
+subprocess.run([f"{bin_dir}/clatter-test-mesh", "bar", "0.1", "0.01", "0.003", "20", "2", "1", "strip.obj"], check=True)
+r = run(f"{bin_dir}/clatter-bank", "pan-object", *demo[:-1], '--set=objects.meshes=["strip.obj"]', "--set=fit.divisions=2",
+        "--set=fit.direction_tolerance=0", "--set=check.held_out_directions=0", "-o", "strip.h5", "--progress-interval", "0")
+m = re.search(r"mesh 'strip.obj' is ([0-9.]+) cells wide at grid.dx_m = 0.04", r.stdout + r.stderr)
+check(r.returncode == 0 and m is not None and 2 < float(m.group(1)) < 5,
+      f"pan-object warns that the strip is {m.group(1) if m else '?'} cells wide (2b of its equivalent ellipsoid)")
 
 vertices = [tuple(map(float, line.split()[1:4])) for line in open("coin.obj") if line.startswith("v ")]
 # A mirror-symmetric solid's centre of mass lies on its three mirror planes: the box's centre.
@@ -76,7 +85,6 @@ check(wrong.returncode == 2 and "no mesh entry with a key starting 'zz'" in wron
 # domain, whose grid is the octant grid mirrored into the other seven (8x the cells, to within the
 # cells the mirror planes share), and eight octants' hearing. Its time: the same calibrated rate
 # times 8x the cell-updates plus 8x the series, so at least 8x the octant task's grid part.
-import re
 
 
 def plan(*sets):

@@ -40,6 +40,18 @@ check(errors and max(errors) < 0.03, f"sphere proxy against the sphere's own PAN
                                      f"(worst {100 * max(errors) if errors else float('nan'):.2f} %)")
 check(os.path.getsize(os.path.join(work, "out", "proxy-validation.png")) > 10000 if r.returncode == 0 else False, "the plot is written")
 
+# --contact-s: every impact a half-sine of that length (contact_time_s) instead of a Hertz one.
+os.makedirs(os.path.join(work, "out3"))
+shutil.copy(pebble_pan, os.path.join(work, "out3", "pieces-pan.h5"))
+r = subprocess.run([python, script, os.path.join(work, "scene.json"), proxies, "--out", os.path.join(work, "out3"),
+                    "--bin", bin_dir, "--contact-s", "0.001"], capture_output=True, text=True)
+events = json.load(open(os.path.join(work, "out3", "pieces.json")))["events"] if r.returncode == 0 else []
+check(len(events) == 1 and events[0].get("contact_time_s") == 0.001 and "normal_speed_m_s" not in events[0],
+      "--contact-s 0.001 gives the impact contact_time_s = 0.001 instead of a normal speed")
+rows = list(csv.DictReader(open(os.path.join(work, "out3", "proxy-validation.csv")))) if r.returncode == 0 else []
+errors = [float(x["relative_l2"]) for x in rows]
+check(len(errors) == 6 and max(errors) < 0.03, f"with 1 ms contacts within 3 % too (worst {100 * max(errors) if errors else float('nan'):.2f} %)")
+
 scene["objects"][0]["destroyed_s"] = 0.05
 json.dump(scene, open(os.path.join(work, "broken.json"), "w"))
 r = subprocess.run([python, script, os.path.join(work, "broken.json"), proxies, "--out", os.path.join(work, "out2"),

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "kernels/pulse.hpp"
+#include "tests/reference/ellipsoid_added_mass.hpp"
 #include "tests/reference/sphere_exact.hpp"
 
 using clatter::reference::TranslatingSphere;
@@ -47,4 +48,19 @@ TEST(SphereReference, SlowPulseGivesTheIncompressibleAddedMassPressure) {
 TEST(SphereReference, NothingBeforeTheWaveArrives) {
   const double r = 0.5, arrival = (r - kSphere.radius_m) / kSphere.c_m_s - 2 * kSphere.h_s;
   EXPECT_EQ(kSphere.pressure(r, 1.0, arrival - 1e-6), 0.0);
+}
+
+// Lamb's translation dipole M = 2V / (2 - alpha) in its closed-form limits: a sphere carries half
+// its volume as added mass (M = 3V/2) along any axis; a circular disc of radius R broadside,
+// c -> 0, the added mass 8 rho R^3 / 3 and no volume; edgewise nothing but its vanishing volume.
+TEST(EllipsoidAddedMass, SphereAndDiscLimits) {
+  using clatter::reference::ellipsoid_translation_dipole_m3;
+  const double pi = 3.14159265358979323846, r = 0.3;
+  for (int axis = 0; axis < 3; ++axis)
+    EXPECT_NEAR(ellipsoid_translation_dipole_m3(r, r, r, axis), 1.5 * 4.0 / 3.0 * pi * r * r * r, 1e-12);
+  const double thin = 1e-6;
+  EXPECT_NEAR(ellipsoid_translation_dipole_m3(r, r, thin, 2) / (8.0 / 3.0 * r * r * r), 1.0, 1e-5);
+  EXPECT_LT(ellipsoid_translation_dipole_m3(r, r, thin, 0), 1e-3 * r * r * r);
+  // The order of the semi-axes does not matter, only which one the motion is along.
+  EXPECT_NEAR(ellipsoid_translation_dipole_m3(0.5, 0.12, 0.025, 2), ellipsoid_translation_dipole_m3(0.025, 0.5, 0.12, 0), 1e-15);
 }
