@@ -258,8 +258,8 @@ TEST(PanBank, SphereProxyReproducesTheExactTranslatingSphere) {
 // R p = rho M (i omega) A / (4 pi c): its first moment int t R p dt = -rho M h / (4 pi c) for the
 // acceleration psi(t; h) (int psi dt = h: psi is a partition of unity), whatever the origin of t
 // (int R p dt = 0), and with no assumption of compactness (the pulse is shorter than the body).
-// At 2 cm cells (2.5 cells through the thinnest proxy of the grid, C = 0.025 m). Measured: 1.006,
-// 1.003, 0.992 for field 3 of (0.5, 0.025), (0.2625, 0.025), (0.12, 0.025); 1.01 and 0.99 for
+// At 2 cm cells (2.5 cells through the thinnest proxy of the grid, C = 0.025 m). Measured: 1.0039,
+// 1.0051, 0.9949 for field 3 of (0.5, 0.025), (0.2625, 0.025), (0.12, 0.025); 0.9988 and 0.9859 for
 // fields 1 and 2 of the last; at the demo's 4 cm the last's field 3 is 1.029 (docs/validation.md).
 TEST(PanBank, ThinProxiesTranslateWithLambsAddedMass) {
   io::Config config = demo_config();
