@@ -118,7 +118,7 @@ double kirchhoff_terms(const PanSpec& spec, const PanBody& body);
 // (kernels::fit_proxy of the normalized mesh, the proxy the synthesizer would give it) over
 // grid.dx_m. A sharp-edged thin body's low-frequency radiation (its added mass, the first moment
 // of its translation's far field) converges at first order, short by about 1.5 / width for a
-// fracture piece of a plate (3.4 cells 42 %, 10.3 cells 15 %, 21 cells 7 %) and 1.1 / width for a
+// fracture piece of a plate (3.4 cells 42 %, 10.3 cells 16 %, 21 cells 7 %) and 1.1 / width for a
 // flat box; a thin ellipsoid's, with no edge, is within 3 % at 6 cells (docs/pan.md "Proxy
 // validation"). pan-object warns below kMinMeshWidthCells.
 double mesh_width_cells(const PanBody& body, double dx_m);
