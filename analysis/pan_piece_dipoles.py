@@ -31,18 +31,10 @@ import sys
 import numpy as np
 from scipy.special import elliprd
 
+from pan_proxy_validation import read_obj  # beside this script
+
 A_M, RHO, C_M_S, H_S, R_PROBE_M = 0.5, 1.2041, 343.2, 0.0005, 5.0
 GRID = [0.025 + 0.0475 * i for i in range(11)]
-
-
-def read_obj(path):
-    v, f = [], []
-    for line in open(path):
-        if line.startswith("v "):
-            v.append([float(x) for x in line.split()[1:4]])
-        elif line.startswith("f "):
-            f.append([int(x.split("/")[0]) - 1 for x in line.split()[1:4]])
-    return np.array(v), np.array(f)
 
 
 def mass_properties(v, f):
