@@ -31,7 +31,7 @@ import sys
 import numpy as np
 from scipy.special import elliprd
 
-from pan_proxy_validation import read_obj  # beside this script
+from pan_proxy_validation import read_obj, scene_pieces  # beside this script
 
 A_M, RHO, C_M_S, H_S, R_PROBE_M = 0.5, 1.2041, 343.2, 0.0005, 5.0
 GRID = [0.025 + 0.0475 * i for i in range(11)]
@@ -94,12 +94,7 @@ def main():
     if len(a.dx) < 2:
         sys.exit("--dx: give at least two cell sizes (the extrapolation uses the two finest)")
     os.makedirs(a.out, exist_ok=True)
-    src = json.load(open(a.scene))
-    base = os.path.dirname(os.path.abspath(a.scene))
-    pieces = [o for o in src["objects"] if o.get("mesh") and o.get("destroyed_s") is None][: a.pieces]
-    if not pieces:
-        sys.exit(f"{a.scene}: no piece: no object given by a mesh is left at the end")
-    meshes = [os.path.join(base, o["mesh"]) for o in pieces]
+    _, pieces, meshes = scene_pieces(a.scene, a.pieces)
 
     dxs = sorted(a.dx, reverse=True)
     banks = []

@@ -51,6 +51,17 @@ def read_obj(path):
     return np.array(v), np.array(f)
 
 
+def scene_pieces(path, k):
+    """The scene, its first k pieces (objects given by meshes still there at the end, not a body
+    that broke) and their mesh files; exits naming the scene when there is none."""
+    src = json.load(open(path))
+    base = os.path.dirname(os.path.abspath(path))
+    pieces = [o for o in src["objects"] if o.get("mesh") and o.get("destroyed_s") is None][:k]
+    if not pieces:
+        sys.exit(f"{path}: no piece: no object given by a mesh is left at the end")
+    return src, pieces, [os.path.join(base, o["mesh"]) for o in pieces]
+
+
 def centroid(v, f):
     """The solid's centre of mass (uniform density), from the signed tetrahedra to the origin."""
     a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
@@ -79,13 +90,7 @@ def main():
     ap.add_argument("--contact-s", type=float, default=None, help="every impact a half-sine this long instead of its Hertz contact")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
-    src = json.load(open(a.scene))
-    base = os.path.dirname(os.path.abspath(a.scene))
-    # The pieces: objects given by meshes that are still there at the end (not a body that broke).
-    pieces = [o for o in src["objects"] if o.get("mesh") and o.get("destroyed_s") is None][: a.pieces]
-    if not pieces:
-        sys.exit(f"{a.scene}: no piece: no object given by a mesh is left at the end")
-    meshes = [os.path.join(base, o["mesh"]) for o in pieces]
+    src, pieces, meshes = scene_pieces(a.scene, a.pieces)
 
     own = os.path.join(a.out, "pieces-pan.h5")
     if not os.path.exists(own):
