@@ -121,7 +121,8 @@ class PanObjectKind final : public BankKind {
         spdlog::warn("pan-object: {} is {:.3g} cells wide at grid.dx_m = {} (its equivalent ellipsoid's middle axis, "
                      "scaled to bounding radius {} m): a thin sharp-edged body radiates too little below {} cells "
                      "(about 1.5 / width too little for a plate's fracture piece: 42 % at 3.4 cells, 16 % at 10; "
-                     "docs/pan.md \"Proxy validation\"): use a finer grid.dx_m", body.label(), width, params.grid_dx_m, params.proxies_a_m, kMinMeshWidthCells);
+                     "docs/pan.md \"Proxy validation\"): use a finer grid.dx_m",
+                     body.label(), width, params.grid_dx_m, params.proxies_a_m, kMinMeshWidthCells);
     return pan_sweep(name(), config, spec, context);
   }
   FileTool info(CLI::App& app) const override { return pan_kind().info(app); }

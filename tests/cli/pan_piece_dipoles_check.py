@@ -6,19 +6,14 @@ ellipsoid is itself (to the polyhedron's 0.1 %), so the script's own-PAN dipole 
 match Lamb's (PanBank.ThinProxies* holds the proxies within 1.4 % there); the nearest proxy of the grid is (0.12, 0.025), the shape itself;
 and a sphere of its volume carries 3V/2, a fifth of it. A scene with no piece: exit non-zero.
 Usage: pan_piece_dipoles_check.py PYTHON SCRIPT BIN_DIR MPIEXEC WORKDIR"""
-import csv, json, math, os, shutil, subprocess, sys
+import csv, json, math, os, subprocess, sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_lib import check, finish, start  # noqa: E402
 
 python, script, bin_dir, mpiexec, work = sys.argv[1:6]
-shutil.rmtree(work, ignore_errors=True)
-os.makedirs(work)
-failures = []
-
-
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
-
+work = os.path.abspath(work)
+start(work)
 
 sphere = os.path.join(work, "sphere.obj")
 subprocess.run([f"{bin_dir}/clatter-test-mesh", "sphere", "1", "4", sphere], check=True)
@@ -69,5 +64,4 @@ r = subprocess.run([python, script, os.path.join(work, "broken.json"), "--out", 
                    capture_output=True, text=True)
 check(r.returncode != 0 and "no piece" in r.stderr, f"a scene without pieces: exit {r.returncode}, named")
 
-print("pan piece dipole checks: " + ("all passed" if not failures else f"{len(failures)} failed"))
-sys.exit(1 if failures else 0)
+finish("pan piece dipole checks")
