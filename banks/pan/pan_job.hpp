@@ -59,8 +59,8 @@ FarFieldStrength layout_strength(const PanSpec& spec, std::size_t proxy, const k
 // A field's adaptive direction set (the bank's, with fit.direction_tolerance): the layout of
 // spec.divisions split where quadratic interpolation of the far field misses it at a split point
 // by more than `tolerance` (relative L2), the far field as stored (stored_far_field: over the
-// symmetry zeros). Directions weaker than a tenth of the strongest stored far field among the
-// layout's vertices (amplitude; 1 % of its energy) are judged against that tenth. A field that does
+// symmetry zeros). Directions weaker than far_field_floor (1.5 % of the strongest stored far field
+// among the layout's vertices, or of the strongest p over Z_f there) are judged against it. A field that does
 // not radiate, below kRadiatedEnergy of `yardstick_energy` (the proxy's strongest field's, known from
 // another solve; build_proxy: field 3's, a rotation field's taken per unit surface acceleration),
 // is numerical noise and stays at the layout.
@@ -90,7 +90,7 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
                                       double yardstick_energy = 0, int octant = 0);
 // The miss measure of refine_directions: |interpolated - truth| / max(|truth|, floor), L2 over time.
 double far_field_miss(const std::vector<double>& interpolated, const std::vector<double>& truth, double floor);
-// A tenth of the strongest far field (L2) among the layout's directions, 1 % of its energy.
+// 1.5 % of the strongest far field (L2) among the layout's directions, 2e-4 of its energy.
 double far_field_floor(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface);
 
 // The held-out check (tests, each task's check): the relative L2 of the bank's field at

@@ -491,31 +491,38 @@ TEST(PanDirections, RefinementHoldsTheFarFieldBetweenItsDirectionsAtTheDemoResol
   EXPECT_GT(paper_worst, 0.05);
 }
 
-TEST(PanDirections, RefinementHoldsTheFarFieldWhereAListenerHearsIt) {
-  // The refinement measures q = p / Z_f, the field over its symmetry zeros. A needle swinging about
-  // y (the cigar, field 5) has q's peaks near the planes, where Z_f is small, and a strong p where
-  // q is weak, 45 degrees off the axis. Measured against a tenth of q's peak alone, those
-  // directions passed as converged while their far field missed by 10 % at the paper's resolution
-  // (docs/pan.md, "The refinement's floor"). Here, at 2 cm cells and a 0.2 ms pulse, refined to
-  // 4 %: the far field at 64 random directions (no vertex), in the held-out check's floored
-  // measure (of max(|p|, a tenth of the strongest p)), misses by at most the tolerance and an
-  // eighth (the split points are samples, not a bound). Measured: 3.13 %; with the q floor alone
-  // 5.15 % (1340 directions against 1482).
+namespace {
+
+// The cigar (B = C = 0.025) at 2 cm cells and a 0.2 ms pulse, one field refined to 4 %: its far
+// field p at 64 random directions (no vertex) and, with `near_zero_plane`, 64 more within 0.5-5
+// degrees of the plane y = 0 (where fields 1, 4 and 6 vanish), interpolated as the bank does. Each
+// miss is the relative L2 of p against max(|p|, floor x the strongest |p| of the directions).
+struct ListenerMisses {
+  std::size_t directions = 0;
+  double worst_tenth = 0;  // floor 0.1: the held-out check's "floored" column
+  double worst_weak = 0;   // floor 0.015: down to 2e-4 of the strongest direction's energy
+};
+ListenerMisses cigar_listener_misses(int field, bool near_zero_plane) {
   io::Config config(jobs::pan_schema());
   config.set("pulse.h_s=0.0002");
   config.set("grid.dx_m=0.02");
   config.set("time.dt_s=2.0833333333333333e-05");
-  const OneField one = one_field(config, "0.025, 0.025", 0.025, 0.025, 5);
+  const OneField one = one_field(config, "0.025, 0.025", 0.025, 0.025, field);
   const jobs::PanSpec& spec = one.spec;
   std::vector<double> misses, own;
-  std::size_t directions = 0;
+  ListenerMisses out;
   auto hook = [&](std::size_t, const kernels::fdtd::SurfaceField& surface) {
     const auto refined = jobs::refine_directions(spec, 0, surface, 0.04, 3, 5000);
-    directions = refined.mesh.size();
+    out.directions = refined.mesh.size();
     std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<double> sum(spec.length);
-    for (int i = 0; i < 64; ++i) {
-      const auto d = random_octant_direction(rng);
+    for (int i = 0; i < (near_zero_plane ? 128 : 64); ++i) {
+      std::array<double, 3> d = random_octant_direction(rng);
+      if (i >= 64) {
+        const double el = (0.5 + 4.5 * u(rng)) * std::numbers::pi / 180, az = u(rng) * std::numbers::pi / 2;
+        d = {std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az)};
+      }
       const auto truth = jobs::aligned_far_field(spec, 0, surface, d);
       kernels::pan::blend(refined.mesh.locate(d), [&](std::size_t v) {
         return jobs::stored_far_field(spec, 0, surface, refined.mesh.direction(v));
@@ -531,10 +538,45 @@ TEST(PanDirections, RefinementHoldsTheFarFieldWhereAListenerHearsIt) {
     }
   };
   jobs::run_solve(MPI_COMM_WORLD, one.solve, 0.0, hook);
-  if (!root()) return;
+  if (!root()) return out;
   const double strongest = *std::max_element(own.begin(), own.end());
-  double worst = 0;
-  for (std::size_t i = 0; i < misses.size(); ++i) worst = std::max(worst, misses[i] / std::max(own[i], 0.1 * strongest));
-  std::printf("cigar field 5, far field between %zu directions: worst floored miss in p %.2f %%\n", directions, 100 * worst);
-  EXPECT_LT(worst, 0.045);
+  for (std::size_t i = 0; i < misses.size(); ++i) {
+    out.worst_tenth = std::max(out.worst_tenth, misses[i] / std::max(own[i], 0.1 * strongest));
+    out.worst_weak = std::max(out.worst_weak, misses[i] / std::max(own[i], 0.015 * strongest));
+  }
+  std::printf("cigar field %d, far field between %zu directions: worst miss in p against a tenth of the strongest %.2f %%, "
+              "against 1.5 %% of it %.2f %%\n", field, out.directions, 100 * out.worst_tenth, 100 * out.worst_weak);
+  return out;
+}
+
+}  // namespace
+
+TEST(PanDirections, RefinementHoldsTheFarFieldWhereAListenerHearsIt) {
+  // The refinement measures q = p / Z_f, the field over its symmetry zeros. A needle swinging about
+  // y (the cigar, field 5) has q's peaks near the planes, where Z_f is small, and a strong p where
+  // q is weak, 45 degrees off the axis. Measured against a tenth of q's peak alone, those
+  // directions passed as converged while their far field missed by 10 % at the paper's resolution
+  // (docs/pan.md, "The refinement's floor"). Here the far field misses by at most the tolerance and
+  // an eighth (the split points are samples, not a bound). Measured: 1.89 % (1678 directions);
+  // with the q floor alone 5.15 % (1340), with the floor at a tenth 3.13 % (1482).
+  if (!root()) {
+    cigar_listener_misses(5, false);
+    return;
+  }
+  EXPECT_LT(cigar_listener_misses(5, false).worst_tenth, 0.045);
+}
+
+TEST(PanDirections, RefinementHoldsTheFarFieldWhereItIsWeak) {
+  // A listener is held to 5 % of its own field wherever the field is not negligible. The cigar's
+  // swing about z (field 6) is zero on the plane y = 0 and weak beside it; with the refinement's
+  // floor at a tenth of the strongest direction, directions 0.5-5 degrees off the plane missed by
+  // up to 14 % of their own field and 5.90 % against 1.5 % of the strongest (1482 directions). At
+  // the floor of 1.5 % (floor_from_strongest): 3.51 % (1678 directions).
+  if (!root()) {
+    cigar_listener_misses(6, true);
+    return;
+  }
+  const ListenerMisses m = cigar_listener_misses(6, true);
+  EXPECT_LT(m.worst_weak, 0.045);
+  EXPECT_LT(m.worst_tenth, 0.045);
 }
