@@ -19,7 +19,9 @@ namespace {
 // The three neighbour sums of the me4 stencil at cell k of the row p (strides sx, sy): the 6 axis
 // neighbours, the 6 at distance 2, and the 12 face diagonals. Every group pairs points that a
 // mirror across x, y or z swaps, and groups are added in a fixed order, so mirrored cells round
-// identically (octant mode is bit-exact, docs/fdtd.md).
+// identically (octant mode is bit-exact, docs/fdtd.md). The face diagonals of a plane, say x-z,
+// are the pair sums (xm + xp) at k - 1 and k + 1: the row kernel forms (xm + xp) and (ym + yp)
+// once per cell for the axis ring and shifts them for the diagonals (me4_row_avx512vl).
 struct Me4Sums {
   float ring1, ring2, diag;
 };
@@ -31,9 +33,9 @@ inline Me4Sums me4_sums(const float* p, long sx, long sy, int k) {
   Me4Sums s;
   s.ring1 = ((xm[k] + xp[k]) + (ym[k] + yp[k])) + (p[k - 1] + p[k + 1]);
   s.ring2 = ((p[k - 2 * sx] + p[k + 2 * sx]) + (p[k - 2 * sy] + p[k + 2 * sy])) + (p[k - 2] + p[k + 2]);
-  const float dxy = (xm[k - sy] + xp[k + sy]) + (xp[k - sy] + xm[k + sy]);
-  const float dxz = (xm[k - 1] + xp[k + 1]) + (xp[k - 1] + xm[k + 1]);
-  const float dyz = (ym[k - 1] + yp[k + 1]) + (yp[k - 1] + ym[k + 1]);
+  const float dxy = (xm[k - sy] + xp[k - sy]) + (xm[k + sy] + xp[k + sy]);
+  const float dxz = (xm[k - 1] + xp[k - 1]) + (xm[k + 1] + xp[k + 1]);
+  const float dyz = (ym[k - 1] + yp[k - 1]) + (ym[k + 1] + yp[k + 1]);
   s.diag = (dxy + dxz) + dyz;
   return s;
 }
@@ -71,9 +73,11 @@ void blend_row(const float* __restrict p, float* __restrict q, long sx, long sy,
 #define CLATTER_ME4_AVX512VL 1
 
 // The me4 row kernel for CPUs with AVX-512VL, register-blocked along z. Of the 25 points per cell
-// it loads each of the 13 rows once, at k: the z neighbours k +- 1, k +- 2 of the five rows that
-// need them are lane shifts (valignd) of the vectors at k - 8, k and k + 8, kept from step to
-// step. 256-bit vectors: 512-bit ones split over two cache lines at every load (260-float rows),
+// it loads each of the 13 rows once, at k: the z neighbours k +- 1, k +- 2 of the centre row and
+// of the pair sums (xm + xp) and (ym + yp) are lane shifts (valignd) of the vectors at k - 8, k and
+// k + 8, kept from step to step. Shifting the pair sums rather than the four rows they add makes
+// the x-z and y-z diagonals one addition each: 21 additions and 8 shifts per vector, not 25 and 12
+// (the kernel is bound by its additions and shifts, not by memory; docs/benchmarks.md). 256-bit vectors: 512-bit ones split over two cache lines at every load (260-float rows),
 // and AVX-512VL brings the 32 vector registers that keep the windows and coefficients out of
 // memory (GCC 12 spilled with AVX2's 16). The arithmetic of each cell is me4_row's and
 // blend_row's, operation for operation (no FMA), so the bits are the same.
@@ -143,7 +147,11 @@ void me4_row_avx512vl(const float* __restrict p, float* __restrict q, long sx, l
   auto start = [&](const float* r) __attribute__((target("avx512vl"))) {
     return ZWindow{load8<true>(r, -8, -2, row_end), load8<true>(r, 0, -2, row_end)};
   };
-  ZWindow wc = start(p), wxm = start(xm), wxp = start(xp), wym = start(ym), wyp = start(yp);
+  auto start_sum = [&](const float* a, const float* b) __attribute__((target("avx512vl"))) {
+    const ZWindow wa = start(a), wb = start(b);
+    return ZWindow{add(wa.prev, wb.prev), add(wa.cur, wb.cur)};
+  };
+  ZWindow wc = start(p), wsx = start_sum(xm, xp), wsy = start_sum(ym, yp);
   const Vec c0 = _mm256_set1_ps(c.c0), c1 = _mm256_set1_ps(c.c1), c2 = _mm256_set1_ps(c.c2), c3 = _mm256_set1_ps(c.c3);
   const Vec d0 = _mm256_set1_ps(blend.d0), d1 = _mm256_set1_ps(blend.d1), d2 = _mm256_set1_ps(blend.d2),
             d3 = _mm256_set1_ps(blend.d3), theta_xy = _mm256_set1_ps(blend.theta_xy);
@@ -158,18 +166,16 @@ void me4_row_avx512vl(const float* __restrict p, float* __restrict q, long sx, l
       _mm_prefetch(reinterpret_cast<const char*>(q + k + kAheadFloats), _MM_HINT_T0);
     }
     const ZNeighbours z = slide<true>(wc, load8<kEdge>(p, k + 8, -2, row_end));
-    const ZNeighbours zxm = slide<false>(wxm, load8<kEdge>(xm, k + 8, -2, row_end));
-    const ZNeighbours zxp = slide<false>(wxp, load8<kEdge>(xp, k + 8, -2, row_end));
-    const ZNeighbours zym = slide<false>(wym, load8<kEdge>(ym, k + 8, -2, row_end));
-    const ZNeighbours zyp = slide<false>(wyp, load8<kEdge>(yp, k + 8, -2, row_end));
+    const ZNeighbours pair_x = slide<false>(wsx, add(load8<kEdge>(xm, k + 8, -2, row_end), load8<kEdge>(xp, k + 8, -2, row_end)));
+    const ZNeighbours pair_y = slide<false>(wsy, add(load8<kEdge>(ym, k + 8, -2, row_end), load8<kEdge>(yp, k + 8, -2, row_end)));
     auto at = [&](const float* r) __attribute__((target("avx512vl"), always_inline)) {
       return load8<kEdge>(r, k, 0, end);
     };
-    const Vec ring1 = add(add(add(zxm.c, zxp.c), add(zym.c, zyp.c)), add(z.m1, z.p1));
+    const Vec ring1 = add(add(pair_x.c, pair_y.c), add(z.m1, z.p1));
     const Vec ring2 = add(add(add(at(p - 2 * sx), at(p + 2 * sx)), add(at(p - 2 * sy), at(p + 2 * sy))), add(z.m2, z.p2));
-    const Vec dxy = add(add(at(xm - sy), at(xp + sy)), add(at(xp - sy), at(xm + sy)));
-    const Vec dxz = add(add(zxm.m1, zxp.p1), add(zxp.m1, zxm.p1));
-    const Vec dyz = add(add(zym.m1, zyp.p1), add(zyp.m1, zym.p1));
+    const Vec dxy = add(add(at(xm - sy), at(xp - sy)), add(at(xm + sy), at(xp + sy)));
+    const Vec dxz = add(pair_x.m1, pair_x.p1);
+    const Vec dyz = add(pair_y.m1, pair_y.p1);
     const Vec diag = add(add(dxy, dxz), dyz);
     Vec out = add(add(_mm256_sub_ps(mul(c0, z.c), at(q)), add(mul(c1, ring1), mul(c2, ring2))), mul(c3, diag));
     if constexpr (decltype(blended)::value) {

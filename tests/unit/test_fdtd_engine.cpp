@@ -211,9 +211,9 @@ void naive_me4_bulk(const fdtd::Operator& op, const std::vector<float>& p, std::
                             (at(i, j, k - 1) + at(i, j, k + 1));
         const float ring2 = ((at(i - 2, j, k) + at(i + 2, j, k)) + (at(i, j - 2, k) + at(i, j + 2, k))) +
                             (at(i, j, k - 2) + at(i, j, k + 2));
-        const float dxy = (at(i - 1, j - 1, k) + at(i + 1, j + 1, k)) + (at(i + 1, j - 1, k) + at(i - 1, j + 1, k));
-        const float dxz = (at(i - 1, j, k - 1) + at(i + 1, j, k + 1)) + (at(i + 1, j, k - 1) + at(i - 1, j, k + 1));
-        const float dyz = (at(i, j - 1, k - 1) + at(i, j + 1, k + 1)) + (at(i, j + 1, k - 1) + at(i, j - 1, k + 1));
+        const float dxy = (at(i - 1, j - 1, k) + at(i + 1, j - 1, k)) + (at(i - 1, j + 1, k) + at(i + 1, j + 1, k));
+        const float dxz = (at(i - 1, j, k - 1) + at(i + 1, j, k - 1)) + (at(i - 1, j, k + 1) + at(i + 1, j, k + 1));
+        const float dyz = (at(i, j - 1, k - 1) + at(i, j + 1, k - 1)) + (at(i, j - 1, k + 1) + at(i, j + 1, k + 1));
         const float diag = (dxy + dxz) + dyz;
         const float centre = at(i, j, k);
         float& out = q[static_cast<std::size_t>(layout.at(i, j, k))];
