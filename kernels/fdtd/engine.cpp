@@ -77,7 +77,8 @@ void blend_row(const float* __restrict p, float* __restrict q, long sx, long sy,
 // of the pair sums (xm + xp) and (ym + yp) are lane shifts (valignd) of the vectors at k - 8, k and
 // k + 8, kept from step to step. Shifting the pair sums rather than the four rows they add makes
 // the x-z and y-z diagonals one addition each: 21 additions and 8 shifts per vector, not 25 and 12
-// (the kernel is bound by its additions and shifts, not by memory; docs/benchmarks.md). 256-bit vectors: 512-bit ones split over two cache lines at every load (260-float rows),
+// (the bulk is not bound by memory bandwidth; the step 5 % faster, docs/benchmarks.md).
+// 256-bit vectors: 512-bit ones split over two cache lines at every load (260-float rows),
 // and AVX-512VL brings the 32 vector registers that keep the windows and coefficients out of
 // memory (GCC 12 spilled with AVX2's 16). The arithmetic of each cell is me4_row's and
 // blend_row's, operation for operation (no FMA), so the bits are the same.
