@@ -215,7 +215,11 @@ void srl_row(const float* __restrict p, float* __restrict q, long sx, long sy, i
     q[k] = (c1 * p[k] - q[k]) + l2 * (((xm[k] + xp[k]) + (ym[k] + yp[k])) + (p[k - 1] + p[k + 1]));
 }
 
+bool portable_rows = false;
+
 }  // namespace
+
+void use_portable_row_kernels(bool on) { portable_rows = on; }
 
 Engine::Engine(const Operator& op, HaloExchange& halo)
     : op_(op),
@@ -403,7 +407,7 @@ void Engine::update_bulk_me4(const Box& box, bool interior, float psi) {
       const long row = layout.at(i, j, box.lo[2]);
       const float blend_xy = std::max(blend[0][static_cast<std::size_t>(i)], blend[1][static_cast<std::size_t>(j)]);
 #if CLATTER_ME4_AVX512VL
-      if (avx512vl) {
+      if (avx512vl && !portable_rows) {
         const bool all = blend_xy > 0.0f;
         me4_row_avx512vl(now_.data() + row, next_.data() + row, sx, sy, nk, c,
                          {blend_z, blend_xy, d0, d1, d2, d3, all ? 0 : plain_lo, all ? 0 : plain_hi});

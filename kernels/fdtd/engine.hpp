@@ -13,6 +13,11 @@
 
 namespace clatter::kernels::fdtd {
 
+// Where the CPU has AVX-512VL the me4 bulk runs its register-blocked row kernel; elsewhere the
+// portable rows (AVX2 or baseline clones), with the same bits. Tests switch the first off to check
+// the second's bits on a machine that has AVX-512VL. Not for use while an Engine steps.
+void use_portable_row_kernels(bool on);
+
 class Engine {
  public:
   // Both must outlive the Engine. Starts the field of op.problem().

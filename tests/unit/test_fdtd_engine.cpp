@@ -329,6 +329,16 @@ TEST(FdtdEngine, Me4BulkMatchesANaiveLoopBitForBit) {
   expect_me4_bulk_matches_naive(me4_monopole({21, 27, 25}, true));   // bulk 17 x 23 x 21, mirrors
 }
 
+// The portable rows (me4_row + blend_row, AVX2 or baseline), which CPUs without AVX-512VL run,
+// against the same scalar formula; on a CPU without AVX-512VL this repeats the test above.
+TEST(FdtdEngine, Me4PortableRowsMatchANaiveLoopBitForBit) {
+  fdtd::use_portable_row_kernels(true);
+  expect_me4_bulk_matches_naive(me4_monopole({28, 34, 46}, false));
+  expect_me4_bulk_matches_naive(me4_monopole({26, 30, 20}, false), true);
+  expect_me4_bulk_matches_naive(me4_monopole({21, 27, 25}, true));
+  fdtd::use_portable_row_kernels(false);
+}
+
 namespace {
 
 // The PML written as plain scalar loops over global indices, from the formulas of pml.cpp (kept
