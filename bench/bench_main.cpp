@@ -140,8 +140,45 @@ void BM_KirchhoffPoint(benchmark::State& state) {
   state.counters["elements"] = static_cast<double>(f.elements.size());
 }
 
+// B points at the radii 0.7-3 m along one direction heard in one pass over the surface (a PAN
+// direction's radii), 2571 samples: S = 0 a full-domain surface (an entry of eight octants, a mesh
+// without mirror symmetry like Table 1's plate: the staircase ball of 0.5 m + 3 cells cut by a
+// plate's box, +-0.086 m in z; one image), S = 1 BM_KirchhoffPoint's octant ball (8 images).
+// Items: element-image-samples summed over the points.
+void BM_KirchhoffPoints(benchmark::State& state) {
+  namespace fdtd = clatter::kernels::fdtd;
+  fdtd::Problem p;
+  const double dx = 0.0065;
+  const bool octant = state.range(1) == 1;
+  p.grid = octant ? fdtd::Grid{{99, 99, 99}, dx, true, 6} : fdtd::Grid{{198, 198, 198}, dx, false, 6};
+  p.dt_s = 1.0 / 96000;
+  p.field = 1;
+  const int samples = 2571;
+  fdtd::SurfaceShape shape{0.5 + 3 * dx};
+  if (!octant) shape.half_box_m = {0.5 + 4 * dx, 0.5 + 4 * dx, 0.06 + 4 * dx};
+  fdtd::SurfaceField f = fdtd::empty_surface(p, shape, samples, -2e-4);
+  for (std::size_t i = 0; i < f.p.size(); ++i) {
+    f.p[i] = static_cast<float>(std::sin(0.001 * static_cast<double>(i)));
+    f.dpdn[i] = static_cast<float>(std::cos(0.0013 * static_cast<double>(i)));
+  }
+  const auto batch = static_cast<std::size_t>(state.range(0));
+  const std::array<double, 3> d{0.48, 0.6, 0.64};
+  std::vector<std::array<double, 3>> points;
+  for (std::size_t b = 0; b < batch; ++b) {
+    const double r = 0.7 + 2.3 * static_cast<double>(b) / 8;
+    points.push_back({r * d[0], r * d[1], r * d[2]});
+  }
+  for (auto _ : state) {
+    auto s = fdtd::pressure_at(f, points);
+    benchmark::DoNotOptimize(s.front().value.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(f.elements.size() * batch) * (octant ? 8 : 1) * samples);
+  state.counters["elements"] = static_cast<double>(f.elements.size());
+}
+
 }  // namespace
 
+BENCHMARK(BM_KirchhoffPoints)->ArgsProduct({{1, 2, 3, 5, 9}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FdtdStep)->ArgsProduct({{128, 256}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_StreamCopy)->Arg(1 << 25)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_StreamTriad)->Arg(1 << 25)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -265,11 +265,11 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
         const auto d = heard_direction(spec, proxy, f, o, set.mesh.direction(v));
         const double zeros = octants == 8 ? 1.0 : pan::symmetry_zeros(f, d);
         const Alignment a = alignment(spec, proxy, d);
-        for (std::size_t i = 0; i < m; ++i) {
-          const double r = spec.radii_m[i];
-          const auto p = fdtd::pressure_at(surface, {r * d[0], r * d[1], r * d[2]}, a.advance_s);
-          for (std::size_t k = 0; k < ns; ++k) near[i][k] = static_cast<float>(p.value[k] / zeros);
-        }
+        std::vector<std::array<double, 3>> points;
+        for (const double r : spec.radii_m) points.push_back({r * d[0], r * d[1], r * d[2]});
+        const auto heard_at = fdtd::pressure_at(surface, points, a.advance_s);  // one pass per few radii
+        for (std::size_t i = 0; i < m; ++i)
+          for (std::size_t k = 0; k < ns; ++k) near[i][k] = static_cast<float>(heard_at[i].value[k] / zeros);
         const auto heard = set.far_fields.find(pan::lattice_key(set.mesh.vertices()[v]));
         field.terms.push_back(fitter.fit(series, ns, spec.epsilon, a.whole_steps,
                                          heard != set.far_fields.end()
@@ -280,10 +280,9 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
     }
     if (f == 3) field_3 = strength_3;
     std::vector<float> extra(extra_listeners_m.size() * ns);
-    for (std::size_t l = 0; l < extra_listeners_m.size(); ++l) {
-      const auto p = fdtd::pressure_at(surface, extra_listeners_m[l]);
-      for (std::size_t k = 0; k < ns; ++k) extra[l * ns + k] = static_cast<float>(p.value[k]);
-    }
+    const auto heard_extra = fdtd::pressure_at(surface, extra_listeners_m);
+    for (std::size_t l = 0; l < extra_listeners_m.size(); ++l)
+      for (std::size_t k = 0; k < ns; ++k) extra[l * ns + k] = static_cast<float>(heard_extra[l].value[k]);
     const auto slot = std::find(wanted.begin(), wanted.end(), f) - wanted.begin();  // in the caller's order
     out.extra_series[static_cast<std::size_t>(slot)] = std::move(extra);
   };

@@ -136,7 +136,7 @@ FieldRecord solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fd
         fdtd::assemble_surface(problem, spec.kirchhoff, spec.n_samples, -spec.i_time_zero * problem.dt_s, packs);
     packs.clear();
     for (const auto& d : spec.far_directions) out.far.push_back(fdtd::far_field(surface_field, d));
-    for (const auto& x : spec.surface_listeners_m) out.near.push_back(fdtd::pressure_at(surface_field, x));
+    out.near = fdtd::pressure_at(surface_field, spec.surface_listeners_m);  // in one pass per few points
     try {
       if (hook) hook(fi, surface_field);
     } catch (const Interrupted&) {

@@ -114,5 +114,9 @@ struct KirchhoffSeries {
 KirchhoffSeries far_field(const SurfaceField& surface, const std::array<double, 3>& d, double advance_s = 0);
 // (K) at a point x outside the surface (|x| > outside_radius_m), sampled like far_field.
 KirchhoffSeries pressure_at(const SurfaceField& surface, const std::array<double, 3>& x_m, double advance_s = 0);
+// (K) at several points in one pass over the surface: each series the same bits as alone, the
+// surface's series read once for all (what a full-domain surface's hearing waits on).
+std::vector<KirchhoffSeries> pressure_at(const SurfaceField& surface, const std::vector<std::array<double, 3>>& x_m,
+                                         double advance_s = 0);
 
 }  // namespace clatter::kernels::fdtd

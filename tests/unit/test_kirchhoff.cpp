@@ -249,6 +249,49 @@ TEST(Kirchhoff, ABallCutByABoxHearsANeedleLikeTheBallWithFewerFaces) {
   for (std::size_t e = 0; e < a.size(); ++e) EXPECT_EQ(a[e].centre_m, b[e].centre_m);
 }
 
+// A PAN direction's radii are heard in one pass over the surface, a few points at a time
+// (pressure_at's groups: 12 at these 650 samples, so 14 points cross a group's end). Each point's
+// series must be the one it has alone, bit for bit, on an octant surface (8 images) and a full one,
+// and the exact field of the source.
+TEST(Kirchhoff, PointsHeardTogetherAreEachHeardAlone) {
+  const double dx = 0.0065;
+  const int m = 14, samples = 650;
+  for (bool octant : {true, false}) {
+    const fdtd::Problem p = octant ? grid_problem(true, m + 8, dx, 5) : grid_problem(false, 2 * m + 12, dx, 5);
+    Monopoles src;
+    for (int mirror = 0; mirror < 8; ++mirror) {  // a source of field 5's parity
+      Vec s{0.031, 0.017, 0.047};
+      double sign = 1;
+      for (int a = 0; a < 3; ++a)
+        if ((mirror >> a) & 1) {
+          s[a] = -s[a];
+          sign *= fdtd::field_parity(5, a);
+        }
+      src.at.push_back(s);
+      src.sign.push_back(sign);
+    }
+    const auto f = sampled_surface(p, m, samples, -3 * kH, src);
+    std::vector<Vec> points;
+    for (int q = 0; q < 14; ++q) {
+      const Vec d = unit({0.3 + 0.1 * q, 0.5 - 0.07 * q, 0.8 - 0.11 * q});
+      const double r = 0.2 + 0.12 * q;
+      points.push_back({r * d[0], r * d[1], r * d[2]});
+    }
+    const auto together = fdtd::pressure_at(f, points, 3e-6);
+    ASSERT_EQ(together.size(), points.size());
+    for (std::size_t q = 0; q < points.size(); ++q) {
+      const auto alone = fdtd::pressure_at(f, points[q], 3e-6);
+      EXPECT_EQ(together[q].value, alone.value) << (octant ? "octant" : "full") << ", point " << q;
+      EXPECT_EQ(together[q].valid_end, alone.valid_end);
+      EXPECT_EQ(together[q].t_first_s, alone.t_first_s);
+      const Vec x = points[q];
+      EXPECT_LT(rel_l2(together[q], f, [&](double t) { return src.pressure(x, t + 3e-6); }), 5e-3)
+          << (octant ? "octant" : "full") << ", point " << q;
+    }
+  }
+  EXPECT_TRUE(fdtd::pressure_at(fdtd::SurfaceField{}, std::vector<Vec>{}).empty());
+}
+
 TEST(Kirchhoff, RefusesPointsInsideTheSurfaceAndSurfacesIntoTheLayer) {
   const fdtd::Problem p = grid_problem(false, 40, 0.01, 1);
   EXPECT_THROW(fdtd::staircase_surface(p.grid, {0.18}), std::invalid_argument);  // cells up to 20 + 18 + 1 > 40 - 4
