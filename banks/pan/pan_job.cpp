@@ -291,10 +291,24 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   return out;
 }
 
+std::vector<std::vector<double>> aligned_far_fields(const PanSpec& spec, std::size_t proxy,
+                                                    const kernels::fdtd::SurfaceField& surface,
+                                                    const std::vector<std::array<double, 3>>& d) {
+  std::vector<Alignment> a;
+  std::vector<kernels::fdtd::FarListener> listeners;
+  for (const auto& x : d) {
+    a.push_back(alignment(spec, proxy, x));
+    listeners.push_back({x, a.back().advance_s});
+  }
+  const auto heard = kernels::fdtd::far_field(surface, listeners);  // in one pass per few directions
+  std::vector<std::vector<double>> out;
+  for (std::size_t i = 0; i < d.size(); ++i) out.push_back(frame_far_field(spec, heard[i], a[i].whole_steps));
+  return out;
+}
+
 std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                       const std::array<double, 3>& d) {
-  const Alignment a = alignment(spec, proxy, d);
-  return frame_far_field(spec, kernels::fdtd::far_field(surface, d, a.advance_s), a.whole_steps);
+  return std::move(aligned_far_fields(spec, proxy, surface, {d}).front());
 }
 
 std::array<double, 3> heard_direction(const PanSpec& spec, std::size_t proxy, int field, int octant,
@@ -302,21 +316,31 @@ std::array<double, 3> heard_direction(const PanSpec& spec, std::size_t proxy, in
   return spec.bodies[proxy].shape.octants == 8 ? model::in_octant(d, octant) : pan::off_planes(field, d);
 }
 
+std::vector<std::vector<double>> stored_far_fields(const PanSpec& spec, std::size_t proxy,
+                                                   const kernels::fdtd::SurfaceField& surface,
+                                                   const std::vector<std::array<double, 3>>& d, int octant) {
+  std::vector<std::array<double, 3>> heard;
+  for (const auto& x : d) heard.push_back(heard_direction(spec, proxy, surface.field, octant, x));
+  auto q = aligned_far_fields(spec, proxy, surface, heard);
+  if (spec.bodies[proxy].shape.octants == 8) return q;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const double zeros = pan::symmetry_zeros(surface.field, heard[i]);
+    for (double& x : q[i]) x /= zeros;
+  }
+  return q;
+}
+
 std::vector<double> stored_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                      const std::array<double, 3>& d, int octant) {
-  const auto heard = heard_direction(spec, proxy, surface.field, octant, d);
-  auto q = aligned_far_field(spec, proxy, surface, heard);
-  if (spec.bodies[proxy].shape.octants == 8) return q;
-  const double zeros = pan::symmetry_zeros(surface.field, heard);
-  for (double& x : q) x /= zeros;
-  return q;
+  return std::move(stored_far_fields(spec, proxy, surface, {d}, octant).front());
 }
 
 FarFieldStrength layout_strength(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                  int octant) {
   FarFieldStrength s;
-  for (const auto& d : pan::direction_vertices(spec.divisions))
-    add_strength(s, l2(aligned_far_field(spec, proxy, surface, model::in_octant(d, octant))));
+  std::vector<std::array<double, 3>> d;
+  for (const auto& v : pan::direction_vertices(spec.divisions)) d.push_back(model::in_octant(v, octant));
+  for (const auto& q : aligned_far_fields(spec, proxy, surface, d)) add_strength(s, l2(q));
   return s;
 }
 
@@ -338,14 +362,26 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
                                       double yardstick_energy, int octant) {
   DirectionRefinement out{pan::uniform_mesh(spec.divisions, max_levels), 0, {}, {}};
   auto& mesh = out.mesh;
-  auto at = [&](const pan::LatticePoint& p) -> const std::vector<double>& {
-    auto it = out.far_fields.find(pan::lattice_key(p));
-    if (it == out.far_fields.end()) {
-      stop_if_interrupted();
-      it = out.far_fields.emplace(pan::lattice_key(p), stored_far_field(spec, proxy, surface, mesh.direction(p), octant)).first;
-    }
-    return it->second;
+  // The true far fields, heard a few directions per pass over the surface as the refinement asks.
+  auto ahead = [&](const std::vector<pan::LatticePoint>& points) {
+    std::vector<pan::LatticePoint> wanted;
+    std::vector<std::array<double, 3>> d;
+    for (const auto& p : points)
+      if (!out.far_fields.count(pan::lattice_key(p)) &&
+          std::none_of(wanted.begin(), wanted.end(), [&](const auto& w) { return pan::lattice_key(w) == pan::lattice_key(p); })) {
+        wanted.push_back(p);
+        d.push_back(mesh.direction(p));
+      }
+    if (wanted.empty()) return;
+    stop_if_interrupted();
+    auto q = stored_far_fields(spec, proxy, surface, d, octant);
+    for (std::size_t i = 0; i < wanted.size(); ++i) out.far_fields.emplace(pan::lattice_key(wanted[i]), std::move(q[i]));
   };
+  auto at = [&](const pan::LatticePoint& p) -> const std::vector<double>& {
+    ahead({p});
+    return out.far_fields.at(pan::lattice_key(p));
+  };
+  ahead(mesh.vertices());
   // The unrefined mesh is the layout: the field's strength there (of p = q x its symmetry zeros)
   // and the strongest q, which set the floor below.
   double strongest_q = 0;
@@ -374,7 +410,7 @@ DirectionRefinement refine_directions(const PanSpec& spec, std::size_t proxy, co
         mirrored ? pan::symmetry_zeros(surface.field, heard_direction(spec, proxy, surface.field, octant, mesh.direction(p))) : 1.0;
     return far_field_miss(sum, at(p), std::min(floor_q, floor_p / zeros));
   };
-  out.splits = pan::refine(mesh, miss, tolerance, max_vertices);
+  out.splits = pan::refine(mesh, miss, tolerance, max_vertices, ahead);
   return out;
 }
 

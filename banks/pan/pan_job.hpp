@@ -35,6 +35,10 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
 // samples), aligned by the direction's exact support distance like every stored direction.
 std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                       const std::array<double, 3>& d);
+// The same for several directions, heard in one pass over the surface per few of them.
+std::vector<std::vector<double>> aligned_far_fields(const PanSpec& spec, std::size_t proxy,
+                                                    const kernels::fdtd::SurfaceField& surface,
+                                                    const std::vector<std::array<double, 3>>& d);
 
 // What a bank stores for direction d: the aligned far field over the field's symmetry zeros (q,
 // kernels/pan/directions.hpp symmetry_zeros), heard off the planes where they vanish.
@@ -42,6 +46,9 @@ std::vector<double> aligned_far_field(const PanSpec& spec, std::size_t proxy, co
 // of the positive octant) into it, and nothing is divided.
 std::vector<double> stored_far_field(const PanSpec& spec, std::size_t proxy, const kernels::fdtd::SurfaceField& surface,
                                      const std::array<double, 3>& d, int octant = 0);
+std::vector<std::vector<double>> stored_far_fields(const PanSpec& spec, std::size_t proxy,
+                                                   const kernels::fdtd::SurfaceField& surface,
+                                                   const std::vector<std::array<double, 3>>& d, int octant = 0);
 // Where a stored direction d (of the positive octant) is heard: off the field's planes
 // (kernels/pan/directions.hpp off_planes), or for an entry of eight octants d in `octant`.
 std::array<double, 3> heard_direction(const PanSpec& spec, std::size_t proxy, int field, int octant,

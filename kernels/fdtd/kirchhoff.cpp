@@ -347,30 +347,66 @@ SurfaceField assemble_surface(const Problem& problem, const SurfaceShape& shape,
   return s;
 }
 
-KirchhoffSeries far_field(const SurfaceField& s, const std::array<double, 3>& d, double advance_s) {
+namespace {
+
+// Listeners 0 .. count - 1 heard through the surface in groups whose sums together stay within
+// kGroupBytes, each group in one pass: element after element, each listener's copies of it in
+// turn (copy(q, element, image, sum)). An element's series is then read from memory once per
+// group, and each listener's sum still sees its copies in the order it would alone: the same
+// bits. BM_KirchhoffPoints, one core: a full-domain surface's points (one image) wait on the
+// series, 1.47e9 element-samples/s alone, 2.50e9 in threes, 2.86e9 in fives, 2.1e9 in nines (the
+// sums past the caches); an octant surface's (8 images, the series already reused) 3.83e9 alone,
+// 4.05e9 in threes, 2.87e9 in nines. Threes also held 2.46-2.67e9 with both cores at it.
+template <class Copy>
+std::vector<KirchhoffSeries> hear_in_groups(const SurfaceField& s, std::size_t count, int lead, Copy copy) {
+  constexpr std::size_t kGroupBytes = 8u << 20;
+  const std::size_t group = std::max<std::size_t>(1, kGroupBytes / std::max<std::size_t>(1, DelaySum::bytes(s.n_samples, lead)));
+  const auto mirrors = images(s);
+  std::vector<KirchhoffSeries> out;
+  out.reserve(count);
+  for (std::size_t first = 0; first < count; first += group) {
+    const std::size_t last = std::min(count, first + group);
+    std::vector<DelaySum> sums;
+    sums.reserve(last - first);
+    for (std::size_t q = first; q < last; ++q) sums.emplace_back(s.n_samples, lead);
+    for (std::size_t e = 0; e < s.elements.size(); ++e)
+      for (const auto& im : mirrors)
+        for (std::size_t q = first; q < last; ++q) copy(q, e, im, sums[q - first]);
+    for (const auto& sum : sums) out.push_back(sum.result(s.dx_m * s.dx_m / (4 * std::numbers::pi), s.t_first_s, s.dt_s));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<KirchhoffSeries> far_field(const SurfaceField& s, const std::vector<FarListener>& listeners) {
   Stage stage("far field");
-  const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  if (!(norm > 0)) throw std::invalid_argument("far_field: the direction is zero");
-  const std::array<double, 3> u{d[0] / norm, d[1] / norm, d[2] / norm};
+  std::vector<std::array<double, 3>> u;
+  for (const auto& l : listeners) {
+    const auto& d = l.direction;
+    const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(norm > 0)) throw std::invalid_argument("far_field: the direction is zero");
+    u.push_back({d[0] / norm, d[1] / norm, d[2] / norm});
+  }
   // Elements on the near side reach a far listener up to the surface's radius / c before its
   // centre does: the far field starts that much before the record.
   double reach_m = 0;
   for (const auto& el : s.elements) reach_m = std::max(reach_m, std::hypot(el.centre_m[0], el.centre_m[1], el.centre_m[2]));
-  DelaySum sum(s.n_samples, static_cast<int>(std::ceil(reach_m / (s.c_m_s * s.dt_s))) + DelaySum::kTapsAfter + 1);
+  const int lead = static_cast<int>(std::ceil(reach_m / (s.c_m_s * s.dt_s))) + DelaySum::kTapsAfter + 1;
   const std::size_t ns = static_cast<std::size_t>(s.n_samples);
-  const auto mirrors = images(s);
-  for (std::size_t e = 0; e < s.elements.size(); ++e) {
+  return hear_in_groups(s, listeners.size(), lead, [&](std::size_t q, std::size_t e, const Image& im, DelaySum& sum) {
     const auto& el = s.elements[e];
-    for (const auto& im : mirrors) {
-      double dy = 0;
-      for (int a = 0; a < 3; ++a) dy += u[a] * im.flip[a] * el.centre_m[a];
-      const double nd = el.sign * im.flip[el.axis] * u[el.axis];
-      const double delay = dy / (s.c_m_s * s.dt_s) + advance_s / s.dt_s;
-      // (F): the dp/dt term goes to the differentiated set.
-      sum.add(delay, 0.0, -im.sign, im.sign * nd / s.c_m_s, &s.p[e * ns], &s.dpdn[e * ns]);
-    }
-  }
-  return sum.result(s.dx_m * s.dx_m / (4 * std::numbers::pi), s.t_first_s, s.dt_s);
+    double dy = 0;
+    for (int a = 0; a < 3; ++a) dy += u[q][a] * im.flip[a] * el.centre_m[a];
+    const double nd = el.sign * im.flip[el.axis] * u[q][el.axis];
+    const double delay = dy / (s.c_m_s * s.dt_s) + listeners[q].advance_s / s.dt_s;
+    // (F): the dp/dt term goes to the differentiated set.
+    sum.add(delay, 0.0, -im.sign, im.sign * nd / s.c_m_s, &s.p[e * ns], &s.dpdn[e * ns]);
+  });
+}
+
+KirchhoffSeries far_field(const SurfaceField& s, const std::array<double, 3>& d, double advance_s) {
+  return std::move(far_field(s, std::vector<FarListener>{{d, advance_s}}).front());
 }
 
 std::vector<KirchhoffSeries> pressure_at(const SurfaceField& s, const std::vector<std::array<double, 3>>& x_m,
@@ -381,44 +417,19 @@ std::vector<KirchhoffSeries> pressure_at(const SurfaceField& s, const std::vecto
     if (std::hypot(x[0], x[1], x[2]) <= outside_m)
       throw std::invalid_argument("pressure_at: the point is not outside the Kirchhoff surface");
   const std::size_t ns = static_cast<std::size_t>(s.n_samples);
-  const auto mirrors = images(s);
-  std::vector<KirchhoffSeries> out;
-  out.reserve(x_m.size());
-  // Points in groups whose sums together stay within kGroupBytes, each group in one pass: element
-  // after element, each point's copies of it in turn. An element's series is then read from memory
-  // once per group, and each point's sum still sees its copies in the order it would alone (the
-  // same bits). BM_KirchhoffPoints, one core: a full-domain surface's points (one image) wait on
-  // the series, 1.47e9 element-samples/s alone, 2.50e9 in threes, 2.86e9 in fives, 2.1e9 in nines
-  // (the sums past the caches); an octant surface's (8 images, the series already reused) 3.83e9
-  // alone, 4.05e9 in threes, 2.87e9 in nines. Threes also held 2.46-2.67e9 with both cores at it.
-  constexpr std::size_t kGroupBytes = 8u << 20;
-  const std::size_t group = std::max<std::size_t>(1, kGroupBytes / std::max<std::size_t>(1, DelaySum::bytes(s.n_samples, 0)));
-  for (std::size_t first = 0; first < x_m.size(); first += group) {
-    const std::size_t last = std::min(x_m.size(), first + group);
-    std::vector<DelaySum> sums;
-    sums.reserve(last - first);
-    for (std::size_t q = first; q < last; ++q) sums.emplace_back(s.n_samples, 0);
-    for (std::size_t e = 0; e < s.elements.size(); ++e) {
-      const auto& el = s.elements[e];
-      for (const auto& im : mirrors)
-        for (std::size_t q = first; q < last; ++q) {
-          const auto& x = x_m[q];
-          std::array<double, 3> rv{};
-          double r2 = 0;
-          for (int a = 0; a < 3; ++a) {
-            rv[a] = x[a] - im.flip[a] * el.centre_m[a];
-            r2 += rv[a] * rv[a];
-          }
-          const double r = std::sqrt(r2);
-          const double nr = el.sign * im.flip[el.axis] * rv[el.axis] / r;
-          const double delay = (advance_s - r / s.c_m_s) / s.dt_s;
-          sums[q - first].add(delay, im.sign * nr / r2, -im.sign / r, im.sign * nr / (s.c_m_s * r), &s.p[e * ns],
-                              &s.dpdn[e * ns]);
-        }
+  return hear_in_groups(s, x_m.size(), 0, [&](std::size_t q, std::size_t e, const Image& im, DelaySum& sum) {
+    const auto& el = s.elements[e];
+    std::array<double, 3> rv{};
+    double r2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      rv[a] = x_m[q][a] - im.flip[a] * el.centre_m[a];
+      r2 += rv[a] * rv[a];
     }
-    for (const auto& sum : sums) out.push_back(sum.result(s.dx_m * s.dx_m / (4 * std::numbers::pi), s.t_first_s, s.dt_s));
-  }
-  return out;
+    const double r = std::sqrt(r2);
+    const double nr = el.sign * im.flip[el.axis] * rv[el.axis] / r;
+    const double delay = (advance_s - r / s.c_m_s) / s.dt_s;
+    sum.add(delay, im.sign * nr / r2, -im.sign / r, im.sign * nr / (s.c_m_s * r), &s.p[e * ns], &s.dpdn[e * ns]);
+  });
 }
 
 KirchhoffSeries pressure_at(const SurfaceField& s, const std::array<double, 3>& x_m, double advance_s) {

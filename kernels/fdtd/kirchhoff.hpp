@@ -112,6 +112,13 @@ struct KirchhoffSeries {
 // samples the series that much later: sample k holds the value at t_first_s + k dt + advance_s
 // (a fraction of a step aligns a PAN direction exactly, kernels/pan/fit.hpp).
 KirchhoffSeries far_field(const SurfaceField& surface, const std::array<double, 3>& d, double advance_s = 0);
+// (F) for several directions, each with its own advance, in one pass over the surface per few of
+// them: each series the same bits as alone, the surface's series read once for all.
+struct FarListener {
+  std::array<double, 3> direction{};
+  double advance_s = 0;
+};
+std::vector<KirchhoffSeries> far_field(const SurfaceField& surface, const std::vector<FarListener>& listeners);
 // (K) at a point x outside the surface (|x| > outside_radius_m), sampled like far_field.
 KirchhoffSeries pressure_at(const SurfaceField& surface, const std::array<double, 3>& x_m, double advance_s = 0);
 // (K) at several points in one pass over the surface: each series the same bits as alone, the

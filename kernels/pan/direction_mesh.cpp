@@ -207,12 +207,19 @@ DirectionMesh uniform_mesh(int divisions, int extra_levels) {
   return mesh;
 }
 
-int refine(DirectionMesh& mesh, const DirectionMiss& miss, double tolerance, std::size_t max_vertices) {
+int refine(DirectionMesh& mesh, const DirectionMiss& miss, double tolerance, std::size_t max_vertices,
+           const DirectionsAhead& ahead) {
   int splits = 0;
   for (std::size_t e = 0; e < mesh.elements().size(); ++e) {  // children are appended: coarsest first
     if (!mesh.can_split(e) || mesh.size() + 9 > max_vertices) continue;
+    const auto points = mesh.split_points(e);
+    if (ahead) {
+      std::vector<LatticePoint> at;
+      for (const auto& p : points) at.push_back(p.point);
+      ahead(at);
+    }
     double worst = 0;
-    for (const auto& p : mesh.split_points(e)) worst = std::max(worst, miss(p.point, mesh.weights(e, p.l)));
+    for (const auto& p : points) worst = std::max(worst, miss(p.point, mesh.weights(e, p.l)));
     if (worst > tolerance) {
       mesh.split(e);
       ++splits;

@@ -89,7 +89,11 @@ DirectionMesh uniform_mesh(int divisions, int extra_levels);
 // miss(point, w) is how far the interpolation with weights w over the mesh's vertices (the
 // caller's values at mesh.direction(v)) misses the true value at mesh.direction(point), in the
 // caller's measure. Stops at max_levels or after `max_vertices` vertices. Returns the splits made.
+// `ahead`, if given, is told each element's split points before their misses are asked, so that a
+// caller can get their true values together (kernels/fdtd/kirchhoff.hpp hears several directions
+// in one pass).
 using DirectionMiss = std::function<double(const LatticePoint& point, const DirectionWeights& w)>;
+using DirectionsAhead = std::function<void(const std::vector<LatticePoint>& points)>;
 
 // out = sum_k w.weight[k] series(w.vertex[k]): a per-vertex series interpolated at a direction.
 // `series` maps a vertex index to its samples (all of out.size()).
@@ -101,7 +105,8 @@ void blend(const DirectionWeights& w, SeriesOf&& series, std::vector<double>& ou
     for (std::size_t n = 0; n < out.size(); ++n) out[n] += w.weight[static_cast<std::size_t>(k)] * s[n];
   }
 }
-int refine(DirectionMesh& mesh, const DirectionMiss& miss, double tolerance, std::size_t max_vertices);
+int refine(DirectionMesh& mesh, const DirectionMiss& miss, double tolerance, std::size_t max_vertices,
+           const DirectionsAhead& ahead = {});
 
 // Weights at direction d (closed positive octant) over the leaf of `set` that holds it: quadratic
 // over the leaf's six nodes, or linear over the one of its four triangles (corner and midpoints)

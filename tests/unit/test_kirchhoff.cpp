@@ -249,10 +249,10 @@ TEST(Kirchhoff, ABallCutByABoxHearsANeedleLikeTheBallWithFewerFaces) {
   for (std::size_t e = 0; e < a.size(); ++e) EXPECT_EQ(a[e].centre_m, b[e].centre_m);
 }
 
-// A PAN direction's radii are heard in one pass over the surface, a few points at a time
-// (pressure_at's groups: 12 at these 650 samples, so 14 points cross a group's end). Each point's
-// series must be the one it has alone, bit for bit, on an octant surface (8 images) and a full one,
-// and the exact field of the source.
+// A PAN direction's radii, and the refinement's candidate directions, are heard in one pass over
+// the surface, a few listeners at a time (groups of 12 points or 10 far fields at these 650
+// samples, so 14 cross a group's end). Each listener's series must be the one it has alone, bit for
+// bit, on an octant surface (8 images) and a full one, and the exact field of the source.
 TEST(Kirchhoff, PointsHeardTogetherAreEachHeardAlone) {
   const double dx = 0.0065;
   const int m = 14, samples = 650;
@@ -288,8 +288,27 @@ TEST(Kirchhoff, PointsHeardTogetherAreEachHeardAlone) {
       EXPECT_LT(rel_l2(together[q], f, [&](double t) { return src.pressure(x, t + 3e-6); }), 5e-3)
           << (octant ? "octant" : "full") << ", point " << q;
     }
+    // Far fields likewise, each direction with its own advance (a PAN direction's alignment).
+    std::vector<fdtd::FarListener> far;
+    for (int q = 0; q < 14; ++q) {  // in every octant, away from the planes where field 5's far field is zero
+      const double sx = (q & 1) ? -1.0 : 1.0, sy = (q & 2) ? -1.0 : 1.0, sz = (q & 4) ? -1.0 : 1.0;
+      far.push_back({unit({sx * (0.4 + 0.05 * q), sy * (0.3 + 0.04 * q), sz * (0.6 - 0.03 * q)}), 1e-6 * q});
+    }
+    const auto far_together = fdtd::far_field(f, far);
+    ASSERT_EQ(far_together.size(), far.size());
+    for (std::size_t q = 0; q < far.size(); ++q) {
+      const auto alone = fdtd::far_field(f, far[q].direction, far[q].advance_s);
+      EXPECT_EQ(far_together[q].value, alone.value) << (octant ? "octant" : "full") << ", direction " << q;
+      EXPECT_EQ(far_together[q].valid_end, alone.valid_end);
+      EXPECT_EQ(far_together[q].t_first_s, alone.t_first_s);
+      const Vec d = far[q].direction;
+      const double advance = far[q].advance_s;
+      EXPECT_LT(rel_l2(far_together[q], f, [&](double tau) { return src.far(d, tau + advance); }), 5e-3)
+          << (octant ? "octant" : "full") << ", direction " << q;
+    }
   }
   EXPECT_TRUE(fdtd::pressure_at(fdtd::SurfaceField{}, std::vector<Vec>{}).empty());
+  EXPECT_TRUE(fdtd::far_field(fdtd::SurfaceField{}, std::vector<fdtd::FarListener>{}).empty());
 }
 
 TEST(Kirchhoff, RefusesPointsInsideTheSurfaceAndSurfacesIntoTheLayer) {
