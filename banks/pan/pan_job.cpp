@@ -105,7 +105,9 @@ model::PanBank merge_pan_results(const PanSpec& spec, const std::string& results
     }
     if (r.held_out_points_m != held_out_points(spec, t.proxy) ||
         r.held_out_raw.size() != r.held_out_points_m.size() * static_cast<std::size_t>(spec.solve.n_samples))
-      throw InputError(fmt::format("{}: its held-out points or series are not this config's (check.held_out_*)", file.path()));
+      throw InputError(fmt::format("{}: its held-out points or series are not this config's (check.held_out_*), or the task "
+                                   "was solved by an older clatter-bank, which drew them by the entry's place in the list: "
+                                   "remove the file to solve the task again", file.path()));
     proxy.held_out[static_cast<std::size_t>(t.field - 1)] =
         check_held_out(spec, bank.header, proxy, t.field, r.held_out_points_m, r.held_out_raw);
   }

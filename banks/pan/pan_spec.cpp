@@ -404,10 +404,27 @@ std::vector<PanTask> pan_tasks(const PanSpec& spec) {
   return tasks;
 }
 
+namespace {
+
+// The held-out draw's seed from what the entry is, not where it stands in the list: a proxy is
+// checked at the same points in any bank that holds it. FNV-1a over (B, C) in micrometres, or
+// over a mesh's key.
+std::uint32_t held_out_seed(const PanBody& body) {
+  std::uint32_t h = 2166136261u;
+  auto mix = [&](const std::string& bytes) {
+    for (const unsigned char c : bytes) h = (h ^ c) * 16777619u;
+  };
+  if (body.mesh) mix(body.shape.key);
+  else mix(fmt::format("{},{}", std::lround(body.b_m * 1e6), std::lround(body.c_m * 1e6)));
+  return h;
+}
+
+}  // namespace
+
 std::vector<std::array<double, 3>> held_out_points(const PanSpec& spec, std::size_t proxy) {
   // std::mt19937's sequence is fixed by the standard; the distributions are not, hence Box-Muller
   // on its raw words: |three normals| is uniform over the octant's directions.
-  std::mt19937 rng(static_cast<std::uint32_t>(proxy) + 1);
+  std::mt19937 rng(held_out_seed(spec.bodies.at(proxy)));
   auto uniform = [&] { return (static_cast<double>(rng()) + 0.5) / 4294967296.0; };
   auto normal = [&] { return std::sqrt(-2 * std::log(uniform())) * std::cos(2 * std::numbers::pi * uniform()); };
   // An entry of eight octants is checked over the sphere: the normals keep their signs.

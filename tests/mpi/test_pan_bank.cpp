@@ -164,8 +164,8 @@ TEST(PanBank, HeldOutRadiiAndDirectionWithin5PercentAtEpsilon001) {
 TEST(PanBank, TheMergeChecksEachFieldAsTheBankStoresIt) {
   // The held-out check of each field at the merge (merge_pan_results; clatter-bank info prints it) reads it
   // as io::stored_field codes it in memory. The same points through a bank file, read back as the
-  // synthesizer reads it, must give the same errors; the points are the same on every call, differ
-  // between proxies, lie in the octant at the held-out radii, between the stored ones.
+  // synthesizer reads it, must give the same errors; the points are the same on every call and in
+  // any list, differ between proxies, lie in the octant at the held-out radii, between the stored ones.
   io::Config config = demo_config();
   config.set("proxies.list_m=[[0.35, 0.2], [0.2, 0.1]]");
   config.set("solve.fields=[1, 5]");
@@ -174,6 +174,11 @@ TEST(PanBank, TheMergeChecksEachFieldAsTheBankStoresIt) {
   ASSERT_EQ(points.size(), 8 * (spec.radii_m.size() - 1));
   EXPECT_EQ(points, jobs::held_out_points(spec, 0));
   EXPECT_NE(points, jobs::held_out_points(spec, 1));
+  // Drawn from the proxy itself, not its place in the list: banks of other lists check it at the same points.
+  io::Config swapped = demo_config();
+  swapped.set("proxies.list_m=[[0.2, 0.1], [0.35, 0.2]]");
+  swapped.set("solve.fields=[1, 5]");
+  EXPECT_EQ(points, jobs::held_out_points(jobs::make_pan_spec(swapped), 1));
   for (std::size_t l = 0; l < points.size(); ++l) {
     const auto& x = points[l];
     const std::size_t i = l % spec.held_out_radii_m.size();
