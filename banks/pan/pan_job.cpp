@@ -210,15 +210,21 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
   // far field asks for it), then every direction heard at its radii and at infinity, aligned by its
   // support distance (the whole steps in the fit, the fraction here).
   const int octants = body.shape.octants;
+  // The octants heard: all but those across the mesh's mirror planes (PanBody::mirrored_axes),
+  // whose fields are the heard ones' mirror images; their strengths are the heard ones' too.
+  std::vector<int> heard_octants;
+  for (int o = 0; o < octants; ++o)
+    if ((o & body.mirrored_axes) == 0) heard_octants.push_back(o);
+  const double heard_count = static_cast<double>(heard_octants.size());
   auto hear = [&](std::size_t fi, const fdtd::SurfaceField& surface) {
     const int f = s.fields[fi];
     // An entry of eight octants: field 3's strength over all of them, an octant's mean.
     auto strength_of_3 = [&] {
       FarFieldStrength mean;
-      for (int o = 0; o < octants; ++o) {
+      for (const int o : heard_octants) {
         const FarFieldStrength one = layout_strength(spec, proxy, surface, o);
         mean.strongest_l2 = std::max(mean.strongest_l2, one.strongest_l2);
-        mean.energy += one.energy / octants;
+        mean.energy += one.energy / heard_count;
       }
       return mean;
     };
@@ -234,7 +240,7 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
     FarFieldStrength strength_3;
     // Hearing is most of a task's time (docs/pan.md "Cost"): its progress, like the time loop's.
     ProgressTimer progress(progress_interval_s);
-    for (int o = 0; o < octants; ++o) {
+    for (const int o : heard_octants) {
       auto& field = out.proxy.field(f, o);
       const DirectionRefinement set =
           spec.direction_tolerance > 0
@@ -242,7 +248,7 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                                   per_unit * per_unit * field_3.energy, o)
               : DirectionRefinement{pan::uniform_mesh(spec.divisions, spec.direction_levels), 0, {}, {}};
       strength_3.strongest_l2 = std::max(strength_3.strongest_l2, set.strength.strongest_l2);
-      strength_3.energy += set.strength.energy / octants;
+      strength_3.energy += set.strength.energy / heard_count;
       if (!set.radiated)
         spdlog::info("pan: {}, field {}{}: {:.2g} of the yardstick's energy over the layout: {}", body.label(), f,
                      octants == 8 ? fmt::format(" octant {}", o + 1) : std::string(),
@@ -257,9 +263,10 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
       for (std::size_t v = 0; v < set.mesh.size(); ++v) {
         stop_if_interrupted();
         if (progress.due()) {
-          const double done = (static_cast<double>(o) + static_cast<double>(v) / static_cast<double>(set.mesh.size())) / octants;
+          const double nth = static_cast<double>(std::find(heard_octants.begin(), heard_octants.end(), o) - heard_octants.begin());
+          const double done = (nth + static_cast<double>(v) / static_cast<double>(set.mesh.size())) / heard_count;
           spdlog::info("pan: {}, field {}: hearing direction {}/{}{} at {} radii and infinity{}", body.label(), f, v + 1,
-                       set.mesh.size(), octants == 8 ? fmt::format(" of octant {}/8", o + 1) : std::string(), m,
+                       set.mesh.size(), octants == 8 ? fmt::format(" of octant {} ({}/{} heard)", o + 1, nth + 1, heard_count) : std::string(), m,
                        done > 0 ? fmt::format(", ETA {:.0f} s", progress.eta_s(done)) : std::string());
         }
         // Stored over the field's symmetry zeros (kernels/pan/directions.hpp), heard off the planes;
@@ -279,6 +286,20 @@ ProxyResult build_proxy(MPI_Comm comm, const PanSpec& spec, std::size_t proxy,
                                              : stored_far_field(spec, proxy, surface, set.mesh.direction(v), o)));
       }
       field.directions = set.mesh.stored();
+    }
+    // The octants across the mirror planes: the same directions (each mirrored), the field's
+    // coefficients times its parity across each plane crossed.
+    for (int o = 0; o < octants; ++o) {
+      const int across = o & body.mirrored_axes;
+      if (across == 0) continue;
+      double sign = 1;
+      for (int a = 0; a < 3; ++a)
+        if (across & (1 << a)) sign *= fdtd::field_parity(f, a);
+      auto& field = out.proxy.field(f, o);
+      field = out.proxy.field(f, o & ~across);
+      if (sign < 0)
+        for (auto& t : field.terms)
+          for (float& x : t.value) x = -x;
     }
     if (f == 3) field_3 = strength_3;
     std::vector<float> extra(extra_listeners_m.size() * ns);

@@ -96,7 +96,7 @@ TaskCost task_cost(const PanSpec& spec, const PanBody& body, const Calibration& 
   t.cells = static_cast<double>(g.n[0]) * g.n[1] * g.n[2];
   // With refinement a task solves field 3 too, its floor's yardstick (build_proxy): a bound.
   t.updates = t.cells * (solve.n_samples - 1) * (spec.direction_tolerance > 0 ? 2 : 1);
-  t.series = pan_series_per_task(spec) * octants;
+  t.series = pan_series_per_task(spec) * body.heard_octants();
   t.terms = kirchhoff_terms(spec, body);
   t.task_s = t.updates / (cal.rate * ranks_per_task) + t.series * solve.n_samples * t.terms * cal.surface_s;
   t.listener_bytes = (static_cast<double>(solve.listeners_m.size()) * 4 + t.series * 8) * solve.n_samples;
@@ -161,7 +161,10 @@ std::string pan_report(const PanSpec& spec, const std::vector<PanTask>& tasks, c
     const auto& t = tasks[i];
     const PanBody& b = spec.bodies[t.proxy];
     out += fmt::format("    {}  {}  field {}  {:.0f} face-images  {}{}\n", t.name, b.label(), t.field, c.body[t.proxy].terms,
-                       clock_text(c.task_s[i]), b.shape.octants == 8 ? "  (8 octants)" : "");
+                       clock_text(c.task_s[i]),
+                       b.shape.octants == 1        ? ""
+                       : b.heard_octants() == 8    ? "  (8 octants)"
+                                                   : fmt::format("  (8 octants, {} heard: mirror planes)", b.heard_octants()));
   }
   return out;
 }

@@ -271,6 +271,7 @@ PanBody mesh_body(const std::string& path, const std::string& where, double a_m,
   }
   // Without mirror symmetry in its own axes: the full domain, every octant its own directions.
   body.shape.octants = body.mesh->mirror_symmetric() && !all_octants ? 1 : 8;
+  if (body.shape.octants == 8 && !all_octants) body.mirrored_axes = body.mesh->mirror_axes();
   body.shape.support_points_m = pan::support_points(body.mesh->vertices_m());
   return body;
 }

@@ -4,6 +4,7 @@
 // clatter_specs (no MPI, no HDF5), so a fuzzer or a serial tool can check a PAN config exactly as
 // clatter-bank does.
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -26,6 +27,12 @@ struct PanBody {
   std::shared_ptr<const kernels::fdtd::MeshBody> mesh;  // the normalized mesh, for a mesh entry
   model::PanMeshBody shape;                             // its key, scale, centre of mass, support points
   std::string source;                                   // the OBJ file as the config gives it
+  // An entry of eight octants whose mesh is mirror-symmetric in one or two of its planes (bit a:
+  // x_a -> -x_a; a plate in x and y, a mug across its handle): only the octants with those bits
+  // clear are heard, the others are their mirror images with the field's parity (eqs. 16-21).
+  // 0 for a proxy, a one-octant entry, and under objects.all_octants (every octant heard: the check).
+  int mirrored_axes = 0;
+  int heard_octants() const { return shape.octants >> std::popcount(static_cast<unsigned>(mirrored_axes)); }
   // An entry of the bank with this body and no fields (support_delay_samples reads it).
   model::PanProxy entry() const;
   // "(B, C) = (0.5, 0.12) m" or "mesh 'plate.obj'", for messages.

@@ -166,12 +166,21 @@ SolveResult run_solve(MPI_Comm comm, const SolveSpec& spec, double progress_inte
                mpi::size(comm), topo->dims()[0], topo->dims()[1], topo->dims()[2], steps, spec.problem.dt_s * 1e6,
                spec.problem.courant(), spec.fields.size());
 
+  // "mirror-symmetric", "not mirror-symmetric" or "mirror-symmetric in x -> -x and y -> -y only".
+  auto symmetry_text = [](int axes) {
+    if (axes == 7) return std::string("mirror-symmetric");
+    if (axes == 0) return std::string("not mirror-symmetric");
+    std::string planes;
+    for (int a = 0; a < 3; ++a)
+      if (axes & (1 << a)) planes += fmt::format("{}{} -> -{}", planes.empty() ? "" : " and ", "xyz"[a], "xyz"[a]);
+    return "mirror-symmetric in " + planes + " only";
+  };
   if (const auto& m = spec.problem.mesh)
     spdlog::info("solve: mesh {} ({} triangles, hash {}, scale {}): centre of mass at [{:.6g}, {:.6g}, {:.6g}] m moved to "
-                 "the origin, bounding radius {:.4g} m, volume {:.4g} m^3, {}mirror-symmetric",
+                 "the origin, bounding radius {:.4g} m, volume {:.4g} m^3, {}",
                  spec.mesh_path, m->triangles().size(), spec.mesh_hash, spec.mesh_scale, m->centre_of_mass_offset_m()[0],
                  m->centre_of_mass_offset_m()[1], m->centre_of_mass_offset_m()[2], m->bounding_radius_m(), m->volume_m3(),
-                 m->mirror_symmetric() ? "" : "not ");
+                 symmetry_text(m->mirror_axes()));
   const double cells_per_wavelength = spec.problem.c_m_s / (spec.band_edge_hz * grid.dx_m);
   spdlog::info("solve: scheme {}, {:.3g} cells per shortest wavelength (psi's band edge {:.3g} kHz); predicted "
                "dispersion error {:.2g} % over {:.3g} m to the farthest listener (bound {:.2g} %)",

@@ -65,8 +65,11 @@ MeshBody::MeshBody(std::vector<std::array<double, 3>> vertices_m, std::vector<st
     triangle_box_.push_back(b);
   }
   for (int a = 0; a < 3; ++a) build_bins(a);
-  mismatch_ = check_mirror_symmetry();
-  symmetric_ = mismatch_ <= kMirrorTolerance;
+  const auto mismatch = check_mirror_symmetry();
+  for (int a = 0; a < 3; ++a)
+    if (mismatch[a] <= kMirrorTolerance) mirror_axes_ |= 1 << a;
+  mismatch_ = std::max({mismatch[0], mismatch[1], mismatch[2]});
+  symmetric_ = mirror_axes_ == 7;
 }
 
 void MeshBody::build_bins(int along) {
@@ -209,11 +212,12 @@ BoxClass MeshBody::classify(const std::array<double, 3>& lo, const std::array<do
                                                                                           : BoxClass::outside;
 }
 
-double MeshBody::check_mirror_symmetry() const {
+std::array<double, 3> MeshBody::check_mirror_symmetry() const {
   // Sampled lines along each axis, over the box at offsets that avoid the mirror planes and the
   // diagonals (13 x 11 positions), compared with their images in the three planes. A symmetric
   // mesh gives the same intervals up to rounding; the tolerance scale is the bounding radius.
-  double worst = 0;
+  // worst[a]: the mismatch under x_a -> -x_a.
+  std::array<double, 3> worst{};
   constexpr int np = 13, nq = 11;
   const double tol_abs = kMirrorTolerance * radius_;
   auto clean = [&](std::vector<std::array<double, 2>> s) {
@@ -236,9 +240,9 @@ double MeshBody::check_mirror_symmetry() const {
         auto flipped = here;  // mirror across the plane normal to `along`
         std::reverse(flipped.begin(), flipped.end());
         for (auto& s : flipped) s = {-s[1], -s[0]};
-        worst = std::max(worst, compare(flipped, here));
-        worst = std::max(worst, compare(clean(intervals(along, uv[0], -pu, uv[1], pv)), here));
-        worst = std::max(worst, compare(clean(intervals(along, uv[0], pu, uv[1], -pv)), here));
+        worst[along] = std::max(worst[along], compare(flipped, here));
+        worst[uv[0]] = std::max(worst[uv[0]], compare(clean(intervals(along, uv[0], -pu, uv[1], pv)), here));
+        worst[uv[1]] = std::max(worst[uv[1]], compare(clean(intervals(along, uv[0], pu, uv[1], -pv)), here));
       }
   }
   return worst;

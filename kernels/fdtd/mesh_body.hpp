@@ -44,6 +44,9 @@ class MeshBody final : public SolidBody {
   // The largest difference between a sampled line's solid intervals and its mirror images' found
   // by the symmetry check, relative to the bounding radius (mirror_symmetric: <= kMirrorTolerance).
   double mirror_mismatch() const { return mismatch_; }
+  // The planes the mesh is mirror-symmetric in, each to kMirrorTolerance: bit a for x_a -> -x_a
+  // (mirror_symmetric: all three).
+  int mirror_axes() const { return mirror_axes_; }
   static constexpr double kMirrorTolerance = 1e-9;
   const std::vector<std::array<double, 3>>& vertices_m() const { return vertices_; }
   const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
@@ -66,7 +69,7 @@ class MeshBody final : public SolidBody {
   void build_bins(int along);
   void crossings(int along, double pu, double pv, std::vector<Crossing>& out) const;
   void solid_intervals(int along, int axis_p, double p, int axis_q, double q, std::vector<std::array<double, 2>>& out) const;
-  double check_mirror_symmetry() const;
+  std::array<double, 3> check_mirror_symmetry() const;
 
   std::vector<std::array<double, 3>> vertices_;
   std::vector<std::array<int, 3>> triangles_;
@@ -75,6 +78,7 @@ class MeshBody final : public SolidBody {
   std::array<double, 3> box_lo_{}, box_hi_{}, offset_{};
   double radius_ = 0, volume_ = 0, mismatch_ = 0;
   bool symmetric_ = false;
+  int mirror_axes_ = 0;
 };
 
 }  // namespace clatter::kernels::fdtd

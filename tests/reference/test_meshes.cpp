@@ -95,6 +95,15 @@ Mesh cut_cube(double h, double cut) {
   return outward(std::move(m));
 }
 
+Mesh square_pyramid(double half_base, double height) {
+  Mesh m;
+  const double base = -height / 4;
+  m.vertices = {{-half_base, -half_base, base}, {half_base, -half_base, base}, {half_base, half_base, base},
+                {-half_base, half_base, base}, {0, 0, 3 * height / 4}};
+  m.triangles = {{0, 2, 1}, {0, 3, 2}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  return outward(std::move(m));
+}
+
 Section mesh_section(const Mesh& mesh, int axis, double at) {
   const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
   Section s;

@@ -251,6 +251,15 @@ TEST(MeshCutCells, MirrorSymmetryIsDetected) {
   const MeshBody cut = body_of(clatter::reference::cut_cube(0.1, 0.05));
   std::printf("cut cube: mirror mismatch %.3g of the radius\n", cut.mirror_mismatch());
   EXPECT_FALSE(cut.mirror_symmetric());
+  EXPECT_EQ(cut.mirror_axes(), 0);
+  EXPECT_EQ(body_of(clatter::reference::box_mesh(0.1, 0.07, 0.05)).mirror_axes(), 7);
+  // Two planes of three: a square pyramid is its own image in x and y, not in z.
+  const MeshBody pyramid = body_of(clatter::reference::square_pyramid(0.05, 0.06));
+  EXPECT_EQ(pyramid.mirror_axes(), 3);
+  EXPECT_FALSE(pyramid.mirror_symmetric());
+  Mesh lying = clatter::reference::square_pyramid(0.05, 0.06);  // apex along x: y and z
+  for (auto& v : lying.vertices) v = {v[2], v[1], -v[0]};
+  EXPECT_EQ(body_of(lying).mirror_axes(), 6);
   // A symmetric mesh moved off its centre of mass is centred again: still symmetric.
   Mesh moved = clatter::reference::box_mesh(0.1, 0.07, 0.05);
   for (auto& v : moved.vertices) v = {v[0] + 0.3, v[1] - 0.2, v[2] + 0.01};
