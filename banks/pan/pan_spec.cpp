@@ -97,8 +97,8 @@ const io::Schema& pan_object_schema() {
     s.keys.push_back({"objects.scene", std::string(""), "a scene (docs/scene-format.md): every object given by a mesh "
                                                         "too, each mesh once (debris shares meshes)"});
     s.keys.push_back({"objects.all_octants", false, "solve every mesh in the full domain with eight octants of "
-                                                    "directions, a mirror-symmetric one too (8x the cells and series: "
-                                                    "a check of the symmetry)"});
+                                                    "directions, each heard, a mirror-symmetric one too (8x the cells "
+                                                    "and series: a check of the symmetry)"});
     return s;
   }();
   return schema;
