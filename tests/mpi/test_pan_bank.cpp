@@ -321,6 +321,23 @@ io::Config pebble_config(const std::string& mesh_path) {
   config.set("objects.meshes=[\"" + mesh_path + "\"]");
   return config;
 }
+// The pan-object entry of one mesh over the paper's layout alone (45 directions per octant, no
+// refinement) and 4 radii (5 series per direction, not 9: half the hearing), through the bank file
+// (on rank 0); `all_octants`: objects.all_octants.
+std::pair<jobs::PanSpec, model::PanProxy> layout_entry(const std::string& mesh_path, const std::string& fields,
+                                                       bool all_octants, const std::string& file) {
+  io::Config config = pebble_config(mesh_path);
+  config.set("solve.fields=" + fields);
+  config.set("fit.divisions=8");
+  config.set("fit.direction_tolerance=0");
+  config.set("fit.radii_m=[0.7, 1.0, 1.5, 3.0]");
+  config.set(std::string("objects.all_octants=") + (all_octants ? "true" : "false"));
+  auto spec = jobs::make_pan_spec(jobs::parse_pan_object_params(config));
+  auto built = jobs::build_proxy(MPI_COMM_WORLD, spec, 0, {}, 0.0);
+  model::PanProxy entry;
+  if (root()) entry = through_file(spec, built.proxy, file);
+  return {std::move(spec), std::move(entry)};
+}
 }  // namespace
 
 // A pan-object entry (000 section 5's per-object PAN) of a sphere given as a mesh: an icosphere of
@@ -380,20 +397,8 @@ TEST(PanObjectBank, IcosphereEntryMatchesTheSphereProxyAndTheExactSphere) {
 // one-octant entry; with 45, 1.0-1.3 % against 1.0-1.1 %).
 TEST(PanObjectBank, EightOctantEntryOfASymmetricMeshMatchesItsOneOctantEntryAndTheExactSphere) {
   const std::string mesh_path = write_pebble("pan_object_octants.obj");
-  auto entry_of = [&](bool all_octants, const std::string& file) {
-    io::Config config = pebble_config(mesh_path);
-    config.set("fit.divisions=8");
-    config.set("fit.direction_tolerance=0");
-    config.set("fit.radii_m=[0.7, 1.0, 1.5, 3.0]");  // 5 series per direction, not 9: half the hearing
-    config.set(std::string("objects.all_octants=") + (all_octants ? "true" : "false"));
-    auto spec = jobs::make_pan_spec(jobs::parse_pan_object_params(config));
-    auto built = jobs::build_proxy(MPI_COMM_WORLD, spec, 0, {}, 0.0);
-    model::PanProxy entry;
-    if (root()) entry = through_file(spec, built.proxy, file);
-    return std::make_pair(std::move(spec), std::move(entry));
-  };
-  const auto [spec8, eight] = entry_of(true, "pan_object_octants8.h5");
-  const auto [spec1, one] = entry_of(false, "pan_object_octants1.h5");
+  const auto [spec8, eight] = layout_entry(mesh_path, "[1]", true, "pan_object_octants8.h5");
+  const auto [spec1, one] = layout_entry(mesh_path, "[1]", false, "pan_object_octants1.h5");
   if (!root()) return;
   EXPECT_FALSE(spec8.solve_full.problem.grid.octant);
   EXPECT_EQ(eight.octants(), 8);
@@ -431,21 +436,8 @@ TEST(PanObjectBank, MirrorPlanesOfAMeshAreHeardOnceAndMatchEveryOctantHeard) {
   const auto pyramid = reference::square_pyramid(0.05, 0.06);
   if (root()) std::ofstream(mesh_path) << io::obj_text(io::TriangleMesh{pyramid.vertices, pyramid.triangles});
   MPI_Barrier(MPI_COMM_WORLD);
-  auto entry_of = [&](bool all_octants, const std::string& file) {
-    io::Config config = pebble_config(mesh_path);
-    config.set("solve.fields=[1, 4]");
-    config.set("fit.divisions=8");
-    config.set("fit.direction_tolerance=0");
-    config.set("fit.radii_m=[0.7, 1.0, 1.5, 3.0]");
-    config.set(std::string("objects.all_octants=") + (all_octants ? "true" : "false"));
-    auto spec = jobs::make_pan_spec(jobs::parse_pan_object_params(config));
-    auto built = jobs::build_proxy(MPI_COMM_WORLD, spec, 0, {}, 0.0);
-    model::PanProxy entry;
-    if (root()) entry = through_file(spec, built.proxy, file);
-    return std::make_pair(std::move(spec), std::move(entry));
-  };
-  const auto [spec2, mirrored] = entry_of(false, "pan_object_pyramid2.h5");
-  const auto [spec8, heard] = entry_of(true, "pan_object_pyramid8.h5");
+  const auto [spec2, mirrored] = layout_entry(mesh_path, "[1, 4]", false, "pan_object_pyramid2.h5");
+  const auto [spec8, heard] = layout_entry(mesh_path, "[1, 4]", true, "pan_object_pyramid8.h5");
   if (!root()) return;
   EXPECT_EQ(spec2.bodies[0].mirrored_axes, 3);
   EXPECT_EQ(spec2.bodies[0].heard_octants(), 2);
