@@ -135,8 +135,10 @@ FieldRecord solve_field(MPI_Comm comm, const SolveSpec& spec, std::size_t fi, fd
     const fdtd::SurfaceField surface_field =
         fdtd::assemble_surface(problem, spec.kirchhoff, spec.n_samples, -spec.i_time_zero * problem.dt_s, packs);
     packs.clear();
-    for (const auto& d : spec.far_directions) out.far.push_back(fdtd::far_field(surface_field, d));
-    out.near = fdtd::pressure_at(surface_field, spec.surface_listeners_m);  // in one pass per few points
+    std::vector<fdtd::FarListener> far;
+    for (const auto& d : spec.far_directions) far.push_back({d, 0.0});
+    out.far = fdtd::far_field(surface_field, far);  // each in one pass per few listeners
+    out.near = fdtd::pressure_at(surface_field, spec.surface_listeners_m);
     try {
       if (hook) hook(fi, surface_field);
     } catch (const Interrupted&) {

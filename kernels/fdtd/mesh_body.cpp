@@ -69,7 +69,6 @@ MeshBody::MeshBody(std::vector<std::array<double, 3>> vertices_m, std::vector<st
   for (int a = 0; a < 3; ++a)
     if (mismatch[a] <= kMirrorTolerance) mirror_axes_ |= 1 << a;
   mismatch_ = std::max({mismatch[0], mismatch[1], mismatch[2]});
-  symmetric_ = mirror_axes_ == 7;
 }
 
 void MeshBody::build_bins(int along) {

@@ -31,7 +31,7 @@ class MeshBody final : public SolidBody {
   BoxClass classify(const std::array<double, 3>& lo, const std::array<double, 3>& hi) const override;
   std::array<double, 3> box_lo_m() const override { return box_lo_; }
   std::array<double, 3> box_hi_m() const override { return box_hi_; }
-  bool mirror_symmetric() const override { return symmetric_; }
+  bool mirror_symmetric() const override { return mirror_axes_ == 7; }
   double bounding_radius_m() const override { return radius_; }
   bool contains(double x, double y, double z) const override;
 
@@ -77,7 +77,6 @@ class MeshBody final : public SolidBody {
   std::array<Bins, 3> bins_;
   std::array<double, 3> box_lo_{}, box_hi_{}, offset_{};
   double radius_ = 0, volume_ = 0, mismatch_ = 0;
-  bool symmetric_ = false;
   int mirror_axes_ = 0;
 };
 
