@@ -185,9 +185,9 @@ Scene read_setting(const json& root, const std::string& path) {
   return scene;
 }
 
-json parse(const std::string& path) {
+json parse(const std::string& text, const std::string& path) {
   try {
-    return json::parse(read_text_file(path, "the scene file"));
+    return json::parse(text);
   } catch (const json::exception& e) {  // out_of_range too: a number beyond double's range
     throw InputError(fmt::format("{}: not valid JSON: {}", path, e.what()));
   }
@@ -221,7 +221,11 @@ void check_event(const ObjectIndex& objects, const SceneEvent& e, double previou
 }  // namespace
 
 Scene read_scene(const std::string& path, bool read_events) {
-  const json root = parse(path);
+  return parse_scene(read_text_file(path, "the scene file"), path, read_events);
+}
+
+Scene parse_scene(const std::string& text, const std::string& path, bool read_events) {
+  const json root = parse(text, path);
   Scene scene = read_setting(root, path);
   if (!read_events) return scene;
   const ObjectIndex objects = index_objects(scene);

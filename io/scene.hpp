@@ -97,6 +97,9 @@ struct Scene {
 // Reads and validates a scene (without its events, for the side file of an impulse file);
 // InputError names the file, the JSON path and the value.
 Scene read_scene(const std::string& path, bool read_events = true);
+// The same from the scene's text (the Python module's scenes): `path` names it in messages and is
+// the folder relative mesh paths start from (its parent; none: the working directory).
+Scene parse_scene(const std::string& text, const std::string& path, bool read_events = true);
 // Writes a scene in the native JSON form that read_scene reads back, with `generator` (any JSON
 // object text, e.g. the simulator and its settings) as an extra top-level key that readers ignore.
 // Objects given by numbers are written so; an object that carries its `mesh` is written as a mesh

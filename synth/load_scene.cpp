@@ -36,7 +36,7 @@ Solid solid_of(const std::string& mesh_path, const std::string& where) {
 }
 
 // omega_0 of the object's solid in its material, computed once per mesh file and material.
-double base_frequency_hz(const io::Scene& scene, const io::SceneObject& o, const Solid& solid,
+double base_frequency_hz(const io::Scene& scene, const io::SceneObject& o, const io::TriangleMesh& mesh,
                          std::map<std::tuple<std::string, double, double, double>, double>& cache) {
   const model::Material& m = scene.materials.at(o.material);
   const double rho = o.mass_kg / o.volume_m3;
@@ -44,7 +44,7 @@ double base_frequency_hz(const io::Scene& scene, const io::SceneObject& o, const
   const auto it = cache.find(key);
   if (it != cache.end()) return it->second;
   try {
-    const double f = kernels::fem::lowest_free_mode(solid.mesh->vertices_m, solid.mesh->triangles, m.youngs_pa, m.poisson,
+    const double f = kernels::fem::lowest_free_mode(mesh.vertices_m, mesh.triangles, m.youngs_pa, m.poisson,
                                                     rho).frequency_hz;
     return cache[key] = f;
   } catch (const std::invalid_argument& e) {
@@ -64,21 +64,30 @@ void set_mass_properties(io::SceneObject& o, const kernels::MeshMassProperties& 
 
 }  // namespace
 
-io::Scene load_scene(const std::string& scene_path, const std::string& impulses_path, bool base_frequencies) {
-  io::Scene scene = io::read_scene(scene_path, impulses_path.empty());
+void resolve_meshes(io::Scene& scene) {
   std::map<std::string, Solid> solids;  // debris often shares a few meshes
-  std::map<std::tuple<std::string, double, double, double>, double> frequencies;
   for (auto& o : scene.objects) {
-    if (o.mesh_path.empty()) continue;
+    if (o.mesh_path.empty() || o.mesh) continue;
     auto it = solids.find(o.mesh_path);
     if (it == solids.end()) it = solids.emplace(o.mesh_path, solid_of(o.mesh_path, o.where)).first;
     set_mass_properties(o, it->second.props);
     o.mesh = it->second.mesh;
-    if (base_frequencies && !(o.base_frequency_hz > 0)) {
-      o.base_frequency_hz = base_frequency_hz(scene, o, it->second, frequencies);
-      o.base_frequency_from = "mesh";
-    }
   }
+}
+
+void add_base_frequencies(io::Scene& scene) {
+  std::map<std::tuple<std::string, double, double, double>, double> frequencies;
+  for (auto& o : scene.objects) {
+    if (!o.mesh || o.base_frequency_hz > 0) continue;
+    o.base_frequency_hz = base_frequency_hz(scene, o, *o.mesh, frequencies);
+    o.base_frequency_from = "mesh";
+  }
+}
+
+io::Scene load_scene(const std::string& scene_path, const std::string& impulses_path, bool base_frequencies) {
+  io::Scene scene = io::read_scene(scene_path, impulses_path.empty());
+  resolve_meshes(scene);
+  if (base_frequencies) add_base_frequencies(scene);
   // Rest-pose contact points need the centres of mass, hence after the meshes.
   if (!impulses_path.empty()) io::read_impulse_events(impulses_path, scene);
   return scene;

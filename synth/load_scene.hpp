@@ -16,4 +16,11 @@ namespace clatter::synth {
 // and material. InputError names the file and field or line.
 io::Scene load_scene(const std::string& scene_path, const std::string& impulses_path = "", bool base_frequencies = false);
 
+
+// The two steps of load_scene after reading, for a scene read otherwise (io::parse_scene): every
+// object given by a mesh file gets its mesh and mass properties (once per file), and then, for
+// modal sound, each such object without a given base frequency its FEM's lowest mode.
+void resolve_meshes(io::Scene& scene);
+void add_base_frequencies(io::Scene& scene);
+
 }  // namespace clatter::synth

@@ -19,18 +19,15 @@
 #include "synth/load_scene.hpp"
 #include "synth/modal_source.hpp"
 #include "synth/render_scene.hpp"
+#include "synth/synthesize.hpp"
 
 using namespace clatter;
 
 namespace {
 
 struct Options {
-  std::string scene, impulses, bank, ground_bank, out = "out.wav", format = "float", voices;
-  std::vector<std::string> modal_banks, object_banks;
-  std::vector<std::string> object_pans;  // -P: PAN banks of mesh entries (clatter-bank pan-object)
-  synth::ModalOptions modal;
-  int rate_hz = 44100;
-  double max_sustained_s = synth::RenderOptions{}.max_sustained_s;
+  std::string scene, impulses, out = "out.wav", format = "float", voices;
+  synth::SynthOptions synth;  // the banks and every option of the render
   bool normalize = false, stems = false;
 };
 
@@ -51,12 +48,8 @@ void print_ground_summary(const synth::GroundSource& ground, std::size_t listene
 void print_summary(const std::vector<synth::SoundSource*>& sources, const std::vector<std::vector<std::vector<double>>>& stems,
                    const synth::ModalSource* modal, const synth::ModalOptions& options) {
   for (std::size_t s = 0; s < sources.size(); ++s) {
-    double peak = 0, energy = 0;
-    std::size_t count = 0;
-    for (const auto& ch : stems[s])
-      for (double v : ch) peak = std::max(peak, std::abs(v)), energy += v * v, ++count;
-    std::printf("clatter-synth: %-6s peak %.4g Pa, RMS %.4g Pa\n", sources[s]->name().c_str(), peak,
-                std::sqrt(energy / static_cast<double>(std::max<std::size_t>(count, 1))));
+    const synth::Level level = synth::level_of(stems[s]);
+    std::printf("clatter-synth: %-6s peak %.4g Pa, RMS %.4g Pa\n", sources[s]->name().c_str(), level.peak_pa, level.rms_pa);
   }
   if (!modal) return;
   const synth::ModalStats& m = modal->stats();
@@ -110,74 +103,31 @@ void write_voices(const std::string& path, const synth::ModalSource& modal, cons
 
 int run(const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (o.rate_hz < 8000 || o.rate_hz > 384000) throw InputError(fmt::format("--rate {}: must be in [8000, 384000] Hz", o.rate_hz));
-  if (o.bank.empty() && o.object_pans.empty() && o.modal_banks.empty() && o.object_banks.empty() && o.ground_bank.empty())
-    throw InputError("give a PAN bank (-b or -P), a modal bank (-m), an object bank (-O) or a ground bank (-g), or several");
-  const bool modal_sound = !o.modal_banks.empty() || !o.object_banks.empty();
-  const io::Scene scene = synth::load_scene(o.scene, o.impulses, modal_sound);
-  std::vector<std::unique_ptr<synth::SoundSource>> owned;
-  synth::ModalSource* modal = nullptr;
-  synth::PanSource* pan = nullptr;
-  if (!o.bank.empty() || !o.object_pans.empty()) {
-    auto p = std::make_unique<synth::PanSource>(o.bank, o.object_pans);
-    pan = p.get();
-    owned.push_back(std::move(p));
-  }
-  if (modal_sound) {
-    auto m = std::make_unique<synth::ModalSource>(o.modal_banks, o.modal, o.object_banks);
-    modal = m.get();
-    owned.push_back(std::move(m));
-  }
-  synth::GroundSource* ground = nullptr;
-  if (!o.ground_bank.empty()) {
-    auto g = std::make_unique<synth::GroundSource>(o.ground_bank);
-    ground = g.get();
-    owned.push_back(std::move(g));
-  }
-  std::vector<synth::SoundSource*> sources;
-  for (auto& s : owned) sources.push_back(s.get());
-  synth::RenderOptions options;
-  options.rate_hz = o.rate_hz;
-  options.max_sustained_s = o.max_sustained_s;
-  synth::RenderStats stats;
-  auto stems = synth::render_scene(scene, sources, options, &stats);
+  synth::check_options(o.synth);
+  if (!o.voices.empty() && !o.synth.modal_sound()) throw InputError("--voices: needs modal sound (-m or -O)");
+  const io::Scene scene = synth::load_scene(o.scene, o.impulses, o.synth.modal_sound());
+  const synth::Synthesis r = synth::synthesize(scene, o.synth);
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  // The mix: every source at every listener.
-  std::vector<std::vector<double>> mix = stems.front();
-  for (std::size_t s = 1; s < stems.size(); ++s)
-    for (std::size_t l = 0; l < mix.size(); ++l)
-      for (std::size_t n = 0; n < mix[l].size(); ++n) mix[l][n] += stems[s][l][n];
-  double peak = 0;
-  for (const auto& ch : mix)
-    for (double v : ch) peak = std::max(peak, std::abs(v));
+  const auto& stems = r.stems;
+  const auto& stats = r.stats;
+  std::vector<synth::SoundSource*> sources;
+  for (const auto& s : r.sources) sources.push_back(s.get());
+  const auto mix = r.mix();  // every source at every listener
+  const double peak = synth::peak_of(mix);
   double gain = 1.0;
   if (o.normalize && peak > 0) gain = 0.99 / peak;
   const auto format = o.format == "pcm24" ? io::SampleFormat::pcm24 : io::SampleFormat::float32;
-  if (format == io::SampleFormat::pcm24 && peak * gain > 1.0)
-    throw InputError(fmt::format("--format pcm24: the peak is {:.4g} Pa, beyond the 24-bit range of +-1; add --normalize "
-                                 "or use --format float",
-                                 peak));
-  auto scaled = [&](std::vector<std::vector<double>> channels) {
-    for (auto& ch : channels)
-      for (double& v : ch) v *= gain;
-    return channels;
-  };
-  io::write_wav(o.out, scaled(mix), o.rate_hz, format);
-  if (o.stems)
-    for (std::size_t s = 0; s < stems.size(); ++s) {
-      const std::string base = o.out.size() > 4 && o.out.substr(o.out.size() - 4) == ".wav" ? o.out.substr(0, o.out.size() - 4) : o.out;
-      io::write_wav(fmt::format("{}.{}.wav", base, sources[s]->name()), scaled(stems[s]), o.rate_hz, format);
-    }
-  const double seconds = static_cast<double>(mix.front().size()) / o.rate_hz;
+  synth::write_outputs(r, mix, o.out, o.synth.render.rate_hz, format, gain, o.stems);
+  const double seconds = static_cast<double>(mix.front().size()) / o.synth.render.rate_hz;
   std::printf("clatter-synth: wrote %s: %zu channel(s), %.3f s at %d Hz, %s; peak %.4g Pa%s\n", o.out.c_str(), mix.size(), seconds,
-              o.rate_hz, o.format.c_str(), peak, o.normalize ? fmt::format(" (normalized by {:.4g})", gain).c_str() : "");
+              o.synth.render.rate_hz, o.format.c_str(), peak, o.normalize ? fmt::format(" (normalized by {:.4g})", gain).c_str() : "");
   std::printf("clatter-synth: %zu impacts (%zu of them fracture impulses, %zu sustained contacts) from %zu events (%zu on "
               "objects not alive then, %zu sustained contacts longer than %g s, skipped) rendered in %.3f s\n",
               stats.impacts, stats.fracture_impacts, stats.sustained_impacts, scene.events.size(), stats.skipped_inactive,
-              stats.skipped_sustained, o.max_sustained_s, render_s);
-  if (pan && !o.object_pans.empty())
+              stats.skipped_sustained, o.synth.render.max_sustained_s, render_s);
+  if (r.pan && !o.synth.object_pans.empty())
     std::printf("clatter-synth: pan: %zu of %zu objects sound with their own PAN (-P, their mesh's entry), the others with "
-                "proxies\n", pan->own_entries(), scene.objects.size());
+                "proxies\n", r.pan->own_entries(), scene.objects.size());
   const auto& mc = stats.mesh_contacts;
   if (mc[0] + mc[1] + mc[2] > 0)
     std::printf("clatter-synth: Hertz contacts on objects' own meshes: %zu on smooth or flat surface, %zu on sharp edges, "
@@ -193,13 +143,12 @@ int run(const Options& o) {
                 sources[s]->name().c_str(), lines.size(), scene.objects.size());
     for (const auto& line : lines) std::printf("clatter-synth: %s:   %s\n", sources[s]->name().c_str(), line.c_str());
   }
-  print_summary(sources, stems, modal, o.modal);
+  print_summary(sources, stems, r.modal, o.synth.modal);
   if (!o.voices.empty()) {
-    if (!modal) throw InputError("--voices: needs modal sound (-m or -O)");
-    write_voices(o.voices, *modal, scene);
+    write_voices(o.voices, *r.modal, scene);
     std::printf("clatter-synth: wrote %s: each object's modal voice\n", o.voices.c_str());
   }
-  if (ground) print_ground_summary(*ground, scene.listeners_m.size());
+  if (r.ground) print_ground_summary(*r.ground, scene.listeners_m.size());
   return kExitOk;
 }
 
@@ -214,28 +163,28 @@ int main(int argc, char** argv) {
   app.add_option("-i,--scene", o.scene, "scene (JSON, docs/scene-format.md); with --impulses: the side file of "
                                         "objects, materials and listeners")->required();
   app.add_option("--impulses", o.impulses, "James-lab rigid-body impulse text file (C/P lines)");
-  app.add_option("-b,--bank", o.bank, "PAN bank (clatter-bank pan): acceleration noise");
-  app.add_option("-P,--object-pan", o.object_pans, "PAN bank of meshes (clatter-bank pan-object), repeatable: objects "
+  app.add_option("-b,--bank", o.synth.pan_bank, "PAN bank (clatter-bank pan): acceleration noise");
+  app.add_option("-P,--object-pan", o.synth.object_pans, "PAN bank of meshes (clatter-bank pan-object), repeatable: objects "
                                                   "whose mesh one holds sound with their own acceleration noise, the others "
                                                   "with -b's proxies");
-  app.add_option("-m,--modal-bank", o.modal_banks, "modal bank (clatter-bank modal), repeatable: one per nu class; each "
+  app.add_option("-m,--modal-bank", o.synth.modal_banks, "modal bank (clatter-bank modal), repeatable: one per nu class; each "
                                                    "object rings with the bank nearest its material's nu");
-  app.add_option("-O,--object-bank", o.object_banks, "object bank (clatter-bank object), repeatable: objects whose base "
+  app.add_option("-O,--object-bank", o.synth.object_banks, "object bank (clatter-bank object), repeatable: objects whose base "
                                                     "frequency is below --proxy-above-hz ring with their own model when one "
                                                     "holds their mesh in their material");
-  app.add_option("--proxy-above-hz", o.modal.proxy_above_hz, "omega_proxy / 2 pi of 003 section 5.4: objects with a lower base "
+  app.add_option("--proxy-above-hz", o.synth.modal.proxy_above_hz, "omega_proxy / 2 pi of 003 section 5.4: objects with a lower base "
                                                              "frequency should have their own model (-O)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  app.add_option("-g,--ground-bank", o.ground_bank, "ground bank (clatter-bank ground): the sound of the ground itself at "
+  app.add_option("-g,--ground-bank", o.synth.ground_bank, "ground bank (clatter-bank ground): the sound of the ground itself at "
                                                     "object-ground impacts; its material named by the scene's ground_material");
-  app.add_option("--max-mode-hz", o.modal.max_frequency_hz, "modes above this after scaling are skipped (and above 0.45 of "
+  app.add_option("--max-mode-hz", o.synth.modal.max_frequency_hz, "modes above this after scaling are skipped (and above 0.45 of "
                                                             "the rate)")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--nu-tolerance", o.modal.poisson_tolerance, "a modal bank serves materials whose nu is within this of its "
+  app.add_option("--nu-tolerance", o.synth.modal.poisson_tolerance, "a modal bank serves materials whose nu is within this of its "
                                                               "own")->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("-o,--out", o.out, "output WAV")->capture_default_str();
-  app.add_option("--rate", o.rate_hz, "output sample rate [Hz]")->capture_default_str();
-  app.add_option("--max-sustained-s", o.max_sustained_s, "sustained contacts (resting, sliding) longer than this are not "
+  app.add_option("--rate", o.synth.render.rate_hz, "output sample rate [Hz]")->capture_default_str();
+  app.add_option("--max-sustained-s", o.synth.render.max_sustained_s, "sustained contacts (resting, sliding) longer than this are not "
                                                           "rendered (docs/synth.md)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
@@ -243,7 +192,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"float", "pcm24"}))
       ->capture_default_str();
   app.add_flag("--normalize", o.normalize, "scale the peak to 0.99 instead of writing pascals");
-  app.add_flag("--no-energy-rule", [&o](std::int64_t) { o.modal.energy_rule = false; },
+  app.add_flag("--no-energy-rule", [&o](std::int64_t) { o.synth.modal.energy_rule = false; },
                "render modal sound without the energy rule (docs/synth.md \"Energy account\"), to measure what it changes");
   app.add_option("--voices", o.voices, "write each object's modal voice as CSV: own model or proxy, scale, its first "
                                         "rendered frequencies, impacts, energy into its modes and radiated");
