@@ -6,6 +6,9 @@
 // Prints the median wall time, impacts per second, the split between the stages of an impact
 // (docs/benchmarks.md) and the peak resident memory.
 // Usage: clatter-synth-bench BANK [REPEATS=5] [EVENTS=210741] [MODAL_BANK|-] [GROUND_BANK]
+//        clatter-synth-bench --write-scene OUT.json [EVENTS=210741] [GROUND_BANK]
+// The second form writes the scene as a scene file instead (its ground the bank's, as the first
+// form renders it), for timing clatter-synth and the Python module on it (bench/python_vs_cli.py).
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -22,6 +25,7 @@
 #include "core/stage_log.hpp"
 #include "synth/ground_source.hpp"
 #include "synth/modal_source.hpp"
+#include "io/scene.hpp"
 #include "synth/render_scene.hpp"
 #include "tests/unit/make_material.hpp"
 
@@ -129,6 +133,14 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: clatter-synth-bench BANK [REPEATS=5] [EVENTS=210741] [MODAL_BANK|-] [GROUND_BANK]\n");
     return 2;
+  }
+  if (std::string(argv[1]) == "--write-scene") {
+    if (argc < 3) return std::fprintf(stderr, "usage: clatter-synth-bench --write-scene OUT.json [EVENTS] [GROUND_BANK]\n"), 2;
+    io::Scene scene = rock_pile(1000, argc > 3 ? static_cast<std::size_t>(std::atol(argv[3])) : 210741, 6.0);
+    if (argc > 4) use_bank_ground(scene, synth::GroundSource(argv[4]));
+    io::write_scene(scene, argv[2], R"({"program": "clatter-synth-bench --write-scene"})");
+    std::printf("wrote %s: %zu objects, %zu events\n", argv[2], scene.objects.size(), scene.events.size());
+    return 0;
   }
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 5;
   const std::size_t events = argc > 3 ? static_cast<std::size_t>(std::atol(argv[3])) : 210741;

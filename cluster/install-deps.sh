@@ -36,6 +36,9 @@ packages=(
   libgtest-dev libbenchmark-dev clang-14 libclang-rt-14-dev
   # analysis scripts (run with /usr/bin/python3)
   python3 python3-numpy python3-scipy python3-h5py python3-matplotlib
+  # the Python module `clatter` (python/): pybind11's headers and CMake config, the interpreter's
+  # headers, and pytest for its tests
+  pybind11-dev python3-dev python3-pytest
   # the private single-node Slurm of the `slurm` tests (and the real thing on a workstation)
   slurmctld slurmd slurm-client munge
 )

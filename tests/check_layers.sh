@@ -6,6 +6,7 @@
 #   core/ depends on nothing of Clatter's; io/ knows no physics and no MPI layer, and its serial
 #   build no MPI at all; synth/ is serial (no MPI); model/ is plain data (std only); no binary links both builds of io;
 #   petsc/ knows no physics, HDF5 or config, and only banks/ (and tests/) use it or PETSc;
+#   python/ (the module) is serial like synth/, on synth/, io/ and kernels/;
 #   sim/ (clatter-sim) is serial and alone uses Bullet and voro++; the synthesizer knows neither;
 #   cli/ (the command-line scaffolding) and sweep/ (the sweep engine) know no physics and no bank
 #   kind; a bank kind's folder banks/NAME/ includes no other kind's, and outside it only the
@@ -34,6 +35,8 @@ forbid io 'kernels/|banks/|sweep/|cli/|mpi/' "must not depend on physics or the 
 hits=$(grep -nE '^\s*#\s*include\s*[<"]("|[A-Za-z0-9_]+[/.])' -r model | grep -vE ':\s*#\s*include\s*"model/' || true)
 if [[ -n $hits ]]; then echo "FAIL: model must be plain data: the standard library only:"; echo "$hits"; status=1; fi
 forbid synth 'mpi\.h|mpi/|banks/|sweep/|cli/|io/h5_parallel' "must stay serial"
+# The Python module is clatter-synth's twin: serial, on the synthesizer, io (serial) and kernels.
+forbid python 'mpi\.h|mpi/|banks/|sweep/|cli/|io/h5_parallel|petsc|slepc|sim/|bt[A-Z]|voro\+\+' "(the Python module) must stay serial, on synth/, io/ and kernels/"
 # The synthesizer reads scenes; the simulator that makes them (sim/) is a separate program.
 forbid synth 'sim/|bt[A-Z]|Bullet|LinearMath|voro\+\+' "must stay free of the rigid-body simulator"
 forbid sim 'mpi\.h|mpi/|banks/|sweep/|cli/|synth/|io/h5_parallel|petsc|slepc' "must stay serial and apart from the synthesizer"
@@ -108,6 +111,7 @@ if [[ -n $links_file ]]; then
   forbid_link clatter_io "$mpi" "(the serial io) must not link MPI"
   forbid_link clatter_synth "$mpi" "must stay serial"
   forbid_link clatter-synth "$mpi" "must stay serial"
+  forbid_link clatter_python "$mpi|$petsc|clatter_sim|clatter_specs" "(the Python module) must stay serial, on synth/, io/ and kernels/"
   forbid_link clatter_banks "clatter_synth" "must not depend on the synthesizer"
   forbid_link clatter_cli "clatter_kernels|clatter_sweep|clatter_banks|clatter_specs" "must know no physics and no bank kind"
   forbid_link clatter_sweep "clatter_kernels|clatter_banks|clatter_specs" "must know no physics and no bank kind"

@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# Usage: install_checks.sh BUILD_DIR SCRATCH SERIAL_HDF5_LIB MPI_HDF5_LIB MPIEXEC...
+# Usage: install_checks.sh BUILD_DIR SCRATCH SERIAL_HDF5_LIB MPI_HDF5_LIB PYTHON MPIEXEC...
 # Installs BUILD_DIR into SCRATCH/prefix and checks the installed tree: the programs run from
 # there (clatter-bank --version and a 2-rank field job, clatter-synth --help), the data and docs
-# are in place, clatter-synth loads no MPI library and the serial HDF5, clatter-bank the MPI HDF5
-# (the two HDF5 libraries CMake found, known to the loader by their SONAMEs).
+# are in place, clatter-synth and the Python module load no MPI library and the serial HDF5,
+# clatter-bank the MPI HDF5 (the two HDF5 libraries CMake found, known to the loader by their
+# SONAMEs); PYTHON imports the installed module from PREFIX/lib/python3.X/dist-packages.
 set -u
 build=$1 scratch=$2
 soname() { readelf -d "$1" | sed -n 's/.*Library soname: \[\(.*\)\]/\1/p'; }
-serial_hdf5=$(soname "$3") mpi_hdf5=$(soname "$4")
-shift 4
+serial_hdf5=$(soname "$3") mpi_hdf5=$(soname "$4") python=$5
+shift 5
 mpiexec=("$@")
 prefix=$scratch/prefix
 status=0
@@ -48,6 +49,21 @@ grep -qF "$mpi_hdf5 " <<<"$bank_libs" || fail "clatter-bank does not load the MP
 grep -qE "libmpi" <<<"$bank_libs" || fail "clatter-bank does not load libmpi"
 if grep -F -e "$serial_hdf5 " -e "not found" <<<"$bank_libs"; then
   fail "clatter-bank loads the serial HDF5 or a missing library (above)"
+fi
+
+# The Python module: where Debian's python3 looks under a prefix, importable from there alone.
+site=$prefix/lib/$("$python" -c 'import sys; print(f"python{sys.version_info[0]}.{sys.version_info[1]}")')/dist-packages
+module=$(ls "$site"/clatter/_clatter*.so 2>/dev/null | head -1)
+[[ -f $site/clatter/__init__.py && -n $module ]] || fail "the Python module is not installed in $site/clatter"
+if [[ -n $module ]]; then
+  run "import the installed module" env PYTHONPATH="$site" "$python" -c \
+      'import clatter, sys; print(clatter.__file__); print(clatter.version)' &&
+    { grep -qF "$site/clatter/__init__.py" out.txt || fail "python imported another clatter: $(head -1 out.txt)"; }
+  module_libs=$(ldd "$module") || fail "ldd $module exited $?"
+  if grep -E "libmpi|libopen-rte|libopen-pal|hdf5_openmpi|not found" <<<"$module_libs"; then
+    fail "the Python module loads MPI, the MPI HDF5 or a missing library (above)"
+  fi
+  grep -qF "$serial_hdf5 " <<<"$module_libs" || fail "the Python module does not load the serial HDF5 ($serial_hdf5)"
 fi
 
 [[ $status -eq 0 ]] && echo "install checks: all passed"

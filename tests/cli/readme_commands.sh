@@ -9,6 +9,9 @@ set -u
 readme=$1 bin=$2 src=$3 work=$4 python=$5 mode=${6:-all}
 rm -rf "$work" && mkdir -p "$work/build/release" && cd "$work" || exit 1
 ln -s "$bin" build/release/bin && ln -s "$src/configs" configs && ln -s "$src/scenes" scenes
+ln -s "$bin/../python" build/release/python  # the Python module beside the programs
+# `python3` in the README is the one with numpy the build chose.
+mkdir -p pybin && ln -s "$python" pybin/python3 && export PATH=$PWD/pybin:$PATH
 status=0
 fail() { echo "FAIL: $*"; status=1; }
 
@@ -36,7 +39,7 @@ done
 
 # What the commands promise, checked on what they left (independent of the code: h5py and text).
 need() { [[ -s $1 ]] || fail "$1 was not made"; }
-for f in out/field.h5 out/big.h5 out/raw.h5 out/bank.h5 my.toml pan.sbatch out/debris.wav out/rings.wav out/rings.pan.wav out/rings.modal.wav; do need "$f"; done
+for f in out/field.h5 out/big.h5 out/raw.h5 out/bank.h5 my.toml pan.sbatch out/debris.wav out/rings.wav out/rings.pan.wav out/rings.modal.wav out/rings-py.wav; do need "$f"; done
 [[ $mode == fast ]] || for f in out/ground.h5 out/all.wav out/plate.json out/plate.wav; do need "$f"; done
 "$python" - <<'PY' || fail "the HDF5 outputs are not what the README says"
 import h5py
@@ -50,7 +53,11 @@ with h5py.File("out/raw.h5") as f:
     assert sorted(f["fields"]) == ["p%d" % i for i in range(1, 7)], list(f["fields"])  # 6 pulse fields
 with h5py.File("out/bank.h5") as f:
     assert f["proxies/b_m"].shape == (3,), f["proxies/b_m"].shape  # the 3-proxy demo bank
-print("README outputs: formats, the 256^3 grid, 6 fields and 3 proxies as stated")
+import numpy as np
+from scipy.io import wavfile
+cli, py = wavfile.read("out/rings.wav")[1], wavfile.read("out/rings-py.wav")[1]
+assert cli.shape == py.shape and np.array_equal(cli, py), "the Python render differs from clatter-synth's"
+print("README outputs: formats, the 256^3 grid, 6 fields and 3 proxies as stated; the Python render is clatter-synth's")
 PY
 grep -q "Subcommands:" cmd1.out || fail "--help printed no subcommands"
 grep -q "3 ellipsoids" cmd*.out || fail "info did not describe 3 proxies"
