@@ -70,17 +70,18 @@ py::dict solve_settings_dict(const model::ModalSolveSettings& s) {
 // |p| of every mode of `entry` (scaled by `scale`, 003 eq. 9) at each point: (points, modes).
 py::array modal_probe(const model::ModalEntry& e, const py::handle& points, double scale, double valid_from_m) {
   const auto x = points_arg(points, "points");
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    const double r = std::hypot(x[p][0], x[p][1], x[p][2]);
+    if (!(r >= valid_from_m))
+      throw InputError(fmt::format("points[{}]: ({}, {}, {}) is {:.4g} m from the centre; the transfer holds from {:.4g} m", p,
+                                   x[p][0], x[p][1], x[p][2], r, valid_from_m));
+  }
   py::array_t<double> out({static_cast<py::ssize_t>(x.size()), static_cast<py::ssize_t>(e.modes())});
   auto o = out.mutable_unchecked<2>();
   for (std::size_t i = 0; i < e.modes(); ++i) {
     const auto m = kernels::transfer::scaled(kernels::transfer::stored_multipole(e.transfer, i), scale);
-    for (std::size_t p = 0; p < x.size(); ++p) {
-      const Eigen::Vector3d xp(x[p][0], x[p][1], x[p][2]);
-      if (i == 0 && !(xp.norm() >= valid_from_m))
-        throw InputError(fmt::format("points[{}]: ({}, {}, {}) is {:.4g} m from the centre; the transfer holds from {:.4g} m",
-                                     p, x[p][0], x[p][1], x[p][2], xp.norm(), valid_from_m));
-      o(static_cast<py::ssize_t>(p), static_cast<py::ssize_t>(i)) = std::abs(m.pressure(xp));
-    }
+    for (std::size_t p = 0; p < x.size(); ++p)
+      o(static_cast<py::ssize_t>(p), static_cast<py::ssize_t>(i)) = std::abs(m.pressure(Eigen::Vector3d(x[p][0], x[p][1], x[p][2])));
   }
   return out;
 }

@@ -19,13 +19,11 @@
 namespace clatter::python {
 
 const io::Scene& PyScene::for_render(bool modal_sound) {
-  if (!modal_sound) return scene;
-  if (!with_frequencies) {
-    io::Scene s = scene;
-    synth::add_base_frequencies(s);
-    with_frequencies = std::move(s);
+  if (modal_sound && !frequencies_added) {
+    synth::add_base_frequencies(scene);
+    frequencies_added = true;
   }
-  return *with_frequencies;
+  return scene;
 }
 
 namespace {
@@ -103,7 +101,7 @@ py::dict mesh_proxy(const py::handle& vertices, const py::handle& triangles, dou
 
 std::shared_ptr<PyScene> resolved(io::Scene scene) {
   synth::resolve_meshes(scene);
-  return std::make_shared<PyScene>(PyScene{std::move(scene), std::nullopt});
+  return std::make_shared<PyScene>(PyScene{std::move(scene), false});
 }
 
 py::list objects_of(const io::Scene& s) {
@@ -113,7 +111,7 @@ py::list objects_of(const io::Scene& s) {
     d["id"] = o.id, d["material"] = o.material, d["mass_kg"] = o.mass_kg, d["volume_m3"] = o.volume_m3;
     d["inertia_kg_m2"] = o.inertia_kg_m2;
     d["mesh"] = o.mesh_path;
-    d["base_frequency_hz"] = o.base_frequency_hz;  // 0: not given (computed at render for modal sound)
+    d["base_frequency_hz"] = o.base_frequency_hz;  // 0: not given (a mesh object's: from the first modal render)
     d["created_s"] = o.created_s, d["destroyed_s"] = o.destroyed_s;
     out.append(d);
   }
@@ -165,7 +163,7 @@ void bind_scene(py::module_& m) {
   m.def("_parse_scene", [](const std::string& text, const std::string& name) { return resolved(io::parse_scene(text, name)); },
         py::arg("text"), py::arg("name"));
   m.def("_load_scene", [](const std::string& path, const std::string& impulses) {
-          return std::make_shared<PyScene>(PyScene{synth::load_scene(path, impulses, false), std::nullopt});
+          return std::make_shared<PyScene>(PyScene{synth::load_scene(path, impulses, false), false});
         }, py::arg("path"), py::arg("impulses") = "");
   m.def("read_mesh", [](const std::string& path) {
           const io::TriangleMesh mesh = io::read_obj(path);

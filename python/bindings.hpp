@@ -3,7 +3,6 @@
 #include <pybind11/pybind11.h>
 
 #include <memory>
-#include <optional>
 
 #include "io/scene.hpp"
 
@@ -11,11 +10,13 @@ namespace clatter::python {
 
 namespace py = pybind11;
 
-// A scene as Python holds it: read and checked by io/ (its meshes resolved), and once modal sound
-// asks for them, a copy with the base frequencies of its mesh objects (a FEM each, so kept).
+// A scene as Python holds it: read and checked by io/ (its meshes resolved); the first render
+// with modal sound adds the base frequencies of its mesh objects that the scene does not give (a
+// FEM each, as clatter-synth's load_scene does for modal sound), kept for later renders. No other
+// source reads them.
 struct PyScene {
   io::Scene scene;
-  std::optional<io::Scene> with_frequencies;
+  bool frequencies_added = false;
   const io::Scene& for_render(bool modal_sound);
 };
 

@@ -129,18 +129,36 @@ def test_a_scene_built_from_numpy_renders_as_its_file(banks, source_dir, tmp_pat
         assert np.abs(doubled.stems[name] - 2 * a.stems[name]).max() < 1e-9 * scale, name
 
 
-def test_an_object_with_its_own_pan_and_mesh_equals_clatter_synth(banks, synth_program, tmp_path):
-    """A pebble given by its mesh (mass properties from the mesh) sounding with its own PAN entry (-P)."""
+def icosahedron_obj(path, radius_m):
+    """A regular icosahedron (outward-wound faces) as an OBJ file: a mesh object whose FEM is quick."""
+    g = (1 + 5**0.5) / 2
+    v = np.array([[-1, g, 0], [1, g, 0], [-1, -g, 0], [1, -g, 0], [0, -1, g], [0, 1, g], [0, -1, -g], [0, 1, -g],
+                  [g, 0, -1], [g, 0, 1], [-g, 0, -1], [-g, 0, 1]], float)
+    v *= radius_m / np.linalg.norm(v[0])
+    f = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2), (10, 7, 6),
+         (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7),
+         (9, 8, 1)]
+    path.write_text("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v) + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f))
+    return path
+
+
+def mesh_scene(mesh, path):
     doc = {"format": "clatter-scene", "format_version": 1,
-           "materials": {"rock": {"youngs_modulus_pa": 5e10, "poisson_ratio": 0.2}},
+           "materials": {"rock": {"youngs_modulus_pa": 5e10, "poisson_ratio": 0.2,
+                                  "rayleigh_alpha_1_s": 6.0, "rayleigh_beta_s": 1e-7}},
            "ground_material": "rock",
-           "objects": [{"id": 1, "mesh": os.path.abspath(banks["pebble_obj"]), "density_kg_m3": 2600.0, "material": "rock"}],
-           "events": [{"t_s": 0.01 + 0.02 * i, "a": 1, "b": "ground", "point_m": [0.0, 0.0, 0.0],
+           "objects": [{"id": 1, "mesh": os.path.abspath(mesh), "density_kg_m3": 2600.0, "material": "rock"}],
+           "events": [{"t_s": 0.01 + 0.02 * i, "a": 1, "b": "ground", "point_m": [0.0, 0.0, -0.08],
                        "impulse_n_s": [0.1 * i, 0.0, 1.0], "normal_speed_m_s": 1.5,
-                       "pose_a": {"position_m": [0.0, 0.0, 0.1], "orientation_wxyz": [1, 0, 0, 0]}} for i in range(4)],
+                       "pose_a": {"position_m": [0.0, 0.0, 0.0], "orientation_wxyz": [1, 0, 0, 0]}} for i in range(4)],
            "listeners": [{"position_m": [1.0, 0.5, 0.6]}, {"position_m": [-2.0, 0.0, 1.0]}]}
-    path = tmp_path / "pebble.json"
     path.write_text(json.dumps(doc))
+    return path
+
+
+def test_an_object_with_its_own_pan_equals_clatter_synth(banks, synth_program, tmp_path):
+    """The pebble given by its mesh (mass properties from the mesh) with its own PAN entry (-P)."""
+    path = mesh_scene(banks["pebble_obj"], tmp_path / "pebble.json")
     wav = tmp_path / "pebble.wav"
     stdout = run_synth(synth_program, ["-i", str(path), "-P", banks["pebble_pan"], "-o", str(wav)])
     assert "1 of 1 objects sound with their own PAN" in stdout
@@ -148,6 +166,24 @@ def test_an_object_with_its_own_pan_and_mesh_equals_clatter_synth(banks, synth_p
     assert out.summary()["pan"]["own_entries"] == 1
     _, mix = read_wav(wav)
     assert np.abs(mix).max() > 0 and np.array_equal(out.mix.astype(np.float32), mix)
+
+
+def test_a_mesh_object_rings_at_its_mesh_s_frequency_as_in_clatter_synth(banks, synth_program, tmp_path):
+    """An icosahedron's modes scaled to the base frequency of its mesh's FEM, which clatter-synth
+    computes at load for modal sound and the module at the first modal render."""
+    path = mesh_scene(icosahedron_obj(tmp_path / "ico.obj", 0.1), tmp_path / "ico.json")
+    wav = tmp_path / "ico.wav"
+    run_synth(synth_program, ["-i", str(path), "-m", banks["modal"], "-o", str(wav)])
+    scene = clatter.load_scene(path)
+    assert scene.objects[0]["base_frequency_hz"] == 0  # not yet: no modal render so far
+    out = clatter.render(scene, modal=banks["modal"])
+    assert out.summary()["modal"]["base_frequency_from"]["mesh"] == 1
+    f0 = scene.objects[0]["base_frequency_hz"]
+    assert f0 > 0 and out.voices()[0]["base_frequency_hz"] == f0
+    _, mix = read_wav(wav)
+    assert np.abs(mix).max() > 0 and np.array_equal(out.mix.astype(np.float32), mix)
+    again = clatter.render(scene, modal=banks["modal"])  # the frequency kept, the same samples
+    assert np.array_equal(again.mix, out.mix)
 
 
 def test_write_wav_writes_what_clatter_synth_writes(banks, synth_program, source_dir, tmp_path):
