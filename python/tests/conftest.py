@@ -15,8 +15,10 @@ def _env(name):
 @pytest.fixture(scope="session")
 def banks():
     """Paths: the sphere and (0.35, 0.2) PAN bank (fields 1-3), the sphere's modal bank (glass,
-    with transfer), the tiny ground bank (steel, soil), the pebble's own PAN and its mesh."""
-    return {key: _env(f"CLATTER_TEST_{key.upper()}") for key in ("pan", "modal", "ground", "pebble_pan", "pebble_obj")}
+    with transfer), the tiny ground bank (steel, soil), the pebble's own PAN and its mesh, the
+    glass bar's object bank and its mesh (object_checks'; 0.20 x 0.02 x 0.01 m from the origin)."""
+    return {key: _env(f"CLATTER_TEST_{key.upper()}")
+            for key in ("pan", "modal", "ground", "pebble_pan", "pebble_obj", "object", "object_obj")}
 
 
 @pytest.fixture(scope="session")

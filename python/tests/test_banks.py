@@ -10,7 +10,8 @@ import clatter
 
 
 def test_each_kind_opens_as_its_class(banks):
-    kinds = {"pan": clatter.PanBank, "modal": clatter.ModalBank, "ground": clatter.GroundBank, "pebble_pan": clatter.PanBank}
+    kinds = {"pan": clatter.PanBank, "modal": clatter.ModalBank, "ground": clatter.GroundBank, "pebble_pan": clatter.PanBank,
+             "object": clatter.ObjectBank}
     for key, cls in kinds.items():
         bank = clatter.open_bank(banks[key])
         assert isinstance(bank, cls) and bank.path == banks[key]
@@ -94,6 +95,24 @@ def test_every_radiating_mode_falls_as_1_over_r_far_away(banks):
     # Scaling by gamma (003 eq. 9, Appendix E: k -> k / gamma, M -> gamma^-5/2 M): the scaled
     # body's pressure at gamma x is gamma^-5/2 the body's at x.
     assert np.allclose(bank.probe(0, 2 * 20 * direction, scale=2.0)[0], 2**-2.5 * p[0], rtol=1e-9)
+
+
+def test_object_bank_entry_is_the_glass_bar(banks):
+    """The bar of object_checks: its mass and centre are the box's (0.20 x 0.02 x 0.01 m of glass from
+    the origin), its arrays the file's, and its radiating modes fall as 1/r."""
+    bank = clatter.open_bank(banks["object"], kind="object")
+    e = bank[0]
+    assert e.material["name"] == "glass"
+    assert e.mass_kg == pytest.approx(2600 * 0.20 * 0.02 * 0.01, rel=1e-9)
+    assert np.allclose(e.centre_m, [0.10, 0.01, 0.005], rtol=1e-9)
+    with h5py.File(banks["object"], "r") as f:
+        g = f["entries/0000"]
+        assert np.array_equal(e.modal.frequencies_hz, g["frequencies_hz"][...])
+    radiating = e.modal.transfer.normal_fraction > 0.3
+    assert radiating.any()
+    d = np.array([0.2, 0.6, -0.77]) / np.linalg.norm([0.2, 0.6, -0.77])
+    p = bank.probe(0, [20 * d, 40 * d])
+    assert np.allclose(40 * p[1][radiating], 20 * p[0][radiating], rtol=0.01)
 
 
 def test_ground_bank_grid_is_the_file_s(banks):

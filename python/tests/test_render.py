@@ -195,3 +195,26 @@ def test_write_wav_writes_what_clatter_synth_writes(banks, synth_program, source
     cli = read_wav(tmp_path / "cli.wav")[1]
     py = read_wav(tmp_path / "py.wav")[1]
     assert cli.dtype == py.dtype and np.array_equal(cli, py) and np.abs(py).max() > 0
+
+
+def test_an_object_with_its_own_modal_model_equals_clatter_synth(banks, synth_program, tmp_path):
+    """The glass bar of the object bank (-O) rings with its own model (its base frequency is below
+    --proxy-above-hz), struck at the middle of its underside."""
+    doc = {"format": "clatter-scene", "format_version": 1,
+           "materials": {"glass": {"youngs_modulus_pa": 6.2e10, "poisson_ratio": 0.2,
+                                   "rayleigh_alpha_1_s": 1.0, "rayleigh_beta_s": 1e-7}},
+           "ground_material": "glass",
+           "objects": [{"id": 1, "mesh": os.path.abspath(banks["object_obj"]), "density_kg_m3": 2600.0, "material": "glass"}],
+           "events": [{"t_s": 0.01, "a": 1, "b": "ground", "point_m": [0.0, 0.0, 0.0], "impulse_n_s": [0.0, 0.0, 0.01],
+                       "normal_speed_m_s": 1.0,
+                       "pose_a": {"position_m": [0.0, 0.0, 0.005], "orientation_wxyz": [1, 0, 0, 0]}}],
+           "listeners": [{"position_m": [0.0, 0.5, 0.5]}], "duration_s": 0.3}
+    path = tmp_path / "bar.json"
+    path.write_text(json.dumps(doc))
+    wav = tmp_path / "bar.wav"
+    stdout = run_synth(synth_program, ["-i", str(path), "-O", banks["object"], "-m", banks["modal"], "-o", str(wav)])
+    assert "1 objects ring with their own model" in stdout
+    out = clatter.render(clatter.load_scene(path), objects=[clatter.open_bank(banks["object"])], modal=banks["modal"])
+    assert out.summary()["modal"]["own_models"] == 1 and out.voices()[0]["voiced_by"] == "own"
+    _, mix = read_wav(wav)
+    assert np.abs(mix).max() > 0 and np.array_equal(out.mix.astype(np.float32), mix)
