@@ -4,9 +4,11 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <map>
 #include <memory>
 
 #include "core/errors.hpp"
+#include "core/stage_log.hpp"
 #include "io/h5.hpp"
 #include "python/arrays.hpp"
 #include "python/bindings.hpp"
@@ -23,7 +25,14 @@ struct PyRender {
   double max_sustained_s = 0;
   std::size_t events = 0, objects = 0, listeners = 0;
   std::vector<std::string> object_pans;
+  std::map<std::string, double> stages_s;  // this render's share of the stage log (synthesize's stages)
 };
+
+std::map<std::string, std::pair<long long, double>> stage_seconds() {
+  std::map<std::string, std::pair<long long, double>> out;
+  for (const auto& e : stage_log().entries()) out[e.path] = {e.count, e.seconds};
+  return out;
+}
 
 // Channels [listener][sample] times gain as one (listeners, samples) array.
 py::array channels_array(const std::vector<std::vector<double>>& channels, double gain) {
@@ -111,10 +120,16 @@ std::shared_ptr<PyRender> render(PyScene& scene, const synth::SynthOptions& opti
   synth::check_options(options);
   const io::Scene& s = scene.for_render(options.modal_sound());
   auto r = std::make_shared<PyRender>();
+  const auto before = stage_seconds();
   {
     py::gil_scoped_release unlocked;
     r->synthesis = synth::synthesize(s, options);
     r->mix = r->synthesis.mix();
+  }
+  for (const auto& [path, now] : stage_seconds()) {
+    const auto it = before.find(path);
+    const auto was = it == before.end() ? std::pair<long long, double>{0, 0.0} : it->second;
+    if (now.first > was.first) r->stages_s[path] = now.second - was.second;  // the stages this render entered
   }
   r->peak_pa = synth::peak_of(r->mix);
   if (normalize && r->peak_pa > 0) r->gain = 0.99 / r->peak_pa;
@@ -161,6 +176,7 @@ void bind_synth(py::module_& m) {
       .def_readonly("rate_hz", &PyRender::rate_hz)
       .def_readonly("gain", &PyRender::gain)
       .def_readonly("peak_pa", &PyRender::peak_pa)
+      .def_readonly("stages_s", &PyRender::stages_s)
       .def_property_readonly("sources", [](const PyRender& r) {
         std::vector<std::string> names;
         for (const auto& s : r.synthesis.sources) names.push_back(s->name());
@@ -183,6 +199,8 @@ void bind_synth(py::module_& m) {
              return synth::write_outputs(r.synthesis, r.mix, path, r.rate_hz,
                                          format == "pcm24" ? io::SampleFormat::pcm24 : io::SampleFormat::float32, r.gain, stems);
            }, py::arg("path"), py::arg("format") = "float", py::arg("stems") = false);
+  m.def("stage_table", [] { return format_stage_table(merge_stage_entries({stage_log().entries()}), 1); },
+        "the stage-timing table of every load_scene and render of this process so far (clatter-synth --log-view's)");
   m.def("_render", &render, py::arg("scene"), py::arg("options"), py::arg("normalize"));
   m.def("_bank_kind", &bank_kind, py::arg("path"));
 }

@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "core/errors.hpp"
+#include "core/stage_log.hpp"
 #include "io/mesh.hpp"
 #include "kernels/fem/lowest_mode.hpp"
 #include "kernels/mass_properties.hpp"
@@ -85,6 +86,7 @@ void add_base_frequencies(io::Scene& scene) {
 }
 
 io::Scene load_scene(const std::string& scene_path, const std::string& impulses_path, bool base_frequencies) {
+  Stage stage("scene");
   io::Scene scene = io::read_scene(scene_path, impulses_path.empty());
   resolve_meshes(scene);
   if (base_frequencies) add_base_frequencies(scene);

@@ -13,6 +13,7 @@
 #include "io/linked_libraries.hpp"
 #include "core/cleanup.hpp"
 #include "core/errors.hpp"
+#include "core/stage_log.hpp"
 #include "io/text_file.hpp"
 #include "io/wav.hpp"
 #include "synth/ground_source.hpp"
@@ -28,7 +29,7 @@ namespace {
 struct Options {
   std::string scene, impulses, out = "out.wav", format = "float", voices;
   synth::SynthOptions synth;  // the banks and every option of the render
-  bool normalize = false, stems = false;
+  bool normalize = false, stems = false, log_view = false;
 };
 
 // The ground source's counts: impacts rendered, the clamps of eta and elevation, and every skip (docs/synth.md).
@@ -102,6 +103,7 @@ void write_voices(const std::string& path, const synth::ModalSource& modal, cons
 }
 
 int run(const Options& o) {
+  Stage total("total");
   const auto t0 = std::chrono::steady_clock::now();
   synth::check_options(o.synth);
   if (!o.voices.empty() && !o.synth.modal_sound()) throw InputError("--voices: needs modal sound (-m or -O)");
@@ -196,6 +198,7 @@ int main(int argc, char** argv) {
                "render modal sound without the energy rule (docs/synth.md \"Energy account\"), to measure what it changes");
   app.add_option("--voices", o.voices, "write each object's modal voice as CSV: own model or proxy, scale, its first "
                                         "rendered frequencies, impacts, energy into its modes and radiated");
+  app.add_flag("--log-view", o.log_view, "print the stage-timing table at the end (scene, banks, render)");
   app.add_flag("--stems", o.stems, "also write one file per source type (OUT.pan.wav, OUT.modal.wav, OUT.ground.wav)");
   try {
     app.parse(argc, argv);
@@ -206,7 +209,9 @@ int main(int argc, char** argv) {
     return kExitInputError;
   }
   try {
-    return run(o);
+    const int status = run(o);
+    if (o.log_view) std::fputs(format_stage_table(merge_stage_entries({stage_log().entries()}), 1).c_str(), stdout);
+    return status;
   } catch (const InputError& e) {
     std::fprintf(stderr, "clatter-synth: error: %s\n", e.what());
     remove_registered_temporaries();

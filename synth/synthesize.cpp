@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/stage_log.hpp"
 
 namespace clatter::synth {
 
@@ -35,20 +36,23 @@ std::vector<std::vector<double>> Synthesis::mix() const {
 Synthesis synthesize(const io::Scene& scene, const SynthOptions& o) {
   check_options(o);
   Synthesis r;
-  if (!o.pan_bank.empty() || !o.object_pans.empty()) {
-    auto p = std::make_unique<PanSource>(o.pan_bank, o.object_pans);
-    r.pan = p.get();
-    r.sources.push_back(std::move(p));
-  }
-  if (o.modal_sound()) {
-    auto m = std::make_unique<ModalSource>(o.modal_banks, o.modal, o.object_banks);
-    r.modal = m.get();
-    r.sources.push_back(std::move(m));
-  }
-  if (!o.ground_bank.empty()) {
-    auto g = std::make_unique<GroundSource>(o.ground_bank);
-    r.ground = g.get();
-    r.sources.push_back(std::move(g));
+  {
+    Stage banks("banks");  // read and checked, then each source's own set-up
+    if (!o.pan_bank.empty() || !o.object_pans.empty()) {
+      auto p = std::make_unique<PanSource>(o.pan_bank, o.object_pans);
+      r.pan = p.get();
+      r.sources.push_back(std::move(p));
+    }
+    if (o.modal_sound()) {
+      auto m = std::make_unique<ModalSource>(o.modal_banks, o.modal, o.object_banks);
+      r.modal = m.get();
+      r.sources.push_back(std::move(m));
+    }
+    if (!o.ground_bank.empty()) {
+      auto g = std::make_unique<GroundSource>(o.ground_bank);
+      r.ground = g.get();
+      r.sources.push_back(std::move(g));
+    }
   }
   std::vector<SoundSource*> sources;
   for (auto& s : r.sources) sources.push_back(s.get());

@@ -18,11 +18,11 @@ import os
 import numpy as np
 
 from clatter._clatter import (InputError, PanBank, ModalBank, ObjectBank, GroundBank, SceneData,
-                              SynthOptions, fit_proxy, fit_proxy_to_mesh, read_mesh, version)
+                              SynthOptions, fit_proxy, fit_proxy_to_mesh, read_mesh, stage_table, version)
 from clatter import _clatter
 
 __all__ = ["InputError", "open_bank", "PanBank", "ModalBank", "ObjectBank", "GroundBank", "Scene",
-           "load_scene", "render", "Render", "fit_proxy", "fit_proxy_to_mesh", "read_mesh", "version"]
+           "load_scene", "render", "Render", "fit_proxy", "fit_proxy_to_mesh", "read_mesh", "stage_table", "version"]
 
 _BANK_NAMES = {"pan": "a PAN bank", "modal": "a modal bank", "object": "an object bank", "ground": "a ground bank"}
 
@@ -236,6 +236,8 @@ class Render:
     gain = property(lambda self: self._data.gain, doc="the factor on every sample (normalize: 0.99 / peak)")
     peak_pa = property(lambda self: self._data.peak_pa, doc="the mix's peak before the gain")
     sources = property(lambda self: self._data.sources)
+    stages_s = property(lambda self: self._data.stages_s,
+                        doc="this render's wall time per stage (banks, render, render/event), as --log-view's rows")
     coverage = property(lambda self: self._data.coverage,
                         doc="per source, one line per object outside its bank's coverage (docs/synth.md)")
 
