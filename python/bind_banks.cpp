@@ -161,6 +161,36 @@ py::array directions_xyz(const model::PanDirections& d, std::int32_t lattice) {
   return out;
 }
 
+// p_i^(scale h)(x, t) of one field of one entry at each point, as `clatter-bank probe` gives one.
+py::dict pan_probe(const PanFile& f, long entry, int field, const py::handle& points, double scale, double rate_hz,
+                   const std::string& interpolation) {
+  const auto& p = entry_at(f, f.bank.proxies, entry);
+  if (field < 1 || field > 6) throw InputError(fmt::format("field: {} is not in 1-6", field));
+  if (!p.solved(field)) throw InputError(fmt::format("field: {} was not solved for entry {} of {}", field, entry, f.path));
+  if (!(finite_arg(scale, "scale") > 0)) throw InputError(fmt::format("scale: {}: must be > 0", scale));
+  if (!(finite_arg(rate_hz, "rate_hz") >= 0)) throw InputError(fmt::format("rate_hz: {}: must be >= 0 (0: the bank's own rate)", rate_hz));
+  if (interpolation != "quadratic" && interpolation != "linear")
+    throw InputError(fmt::format("interpolation: '{}': expected 'quadratic' or 'linear'", interpolation));
+  const auto x = points_arg(points, "points");
+  const double a = f.bank.header.a_m * scale;
+  std::vector<kernels::pan::Series> series;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double r = std::hypot(x[i][0], x[i][1], x[i][2]);
+    if (!(r > a))
+      throw InputError(fmt::format("points[{}]: |x| = {} m is inside the entry's bounding sphere (radius A scale = {} m)", i, r, a));
+    series.push_back(kernels::pan::evaluate({&f.bank.header, &p, field}, x[i], scale, rate_hz,
+                                            interpolation == "linear" ? kernels::pan::Interpolation::linear
+                                                                      : kernels::pan::Interpolation::quadratic));
+  }
+  const auto n = series.empty() ? py::ssize_t{0} : static_cast<py::ssize_t>(series.front().p.size());
+  py::array_t<double> p_out({static_cast<py::ssize_t>(series.size()), n}), t0({static_cast<py::ssize_t>(series.size())});
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    std::copy(series[i].p.begin(), series[i].p.end(), p_out.mutable_data(static_cast<py::ssize_t>(i), 0));
+    t0.mutable_at(static_cast<py::ssize_t>(i)) = series[i].t0_s;
+  }
+  return py::dict(py::arg("t0_s") = t0, py::arg("dt_s") = series.empty() ? 0.0 : series.front().dt_s, py::arg("p") = p_out);
+}
+
 void bind_pan(py::module_& m) {
   py::class_<model::PanField>(m, "PanField", "one field of one entry: its direction set and sparse wavelet terms")
       .def_property_readonly("solved", &model::PanField::solved)
@@ -214,33 +244,7 @@ void bind_pan(py::module_& m) {
              if (octant < 0 || octant >= p.octants()) throw InputError(fmt::format("octant: {} is not in 0-{}", octant, p.octants() - 1));
              return directions_xyz(p.field(field, octant).directions, f.bank.header.lattice());
            }, py::arg("entry"), py::arg("field"), py::arg("octant") = 0, "(n, 3) unit vectors of a field's directions")
-      .def("probe", [](const PanFile& f, long entry, int field, const py::handle& points, double scale, double rate_hz, const std::string& interpolation) {
-             const auto& p = entry_at(f, f.bank.proxies, entry);
-             if (field < 1 || field > 6) throw InputError(fmt::format("field: {} is not in 1-6", field));
-             if (!p.solved(field)) throw InputError(fmt::format("field: {} was not solved for entry {} of {}", field, entry, f.path));
-             if (!(finite_arg(scale, "scale") > 0)) throw InputError(fmt::format("scale: {}: must be > 0", scale));
-             if (!(finite_arg(rate_hz, "rate_hz") >= 0)) throw InputError(fmt::format("rate_hz: {}: must be >= 0 (0: the bank's own rate)", rate_hz));
-             if (interpolation != "quadratic" && interpolation != "linear")
-               throw InputError(fmt::format("interpolation: '{}': expected 'quadratic' or 'linear'", interpolation));
-             const auto x = points_arg(points, "points");
-             const double a = f.bank.header.a_m * scale;
-             std::vector<kernels::pan::Series> series;
-             for (std::size_t i = 0; i < x.size(); ++i) {
-               const double r = std::hypot(x[i][0], x[i][1], x[i][2]);
-               if (!(r > a))
-                 throw InputError(fmt::format("points[{}]: |x| = {} m is inside the entry's bounding sphere (radius A scale = {} m)", i, r, a));
-               series.push_back(kernels::pan::evaluate({&f.bank.header, &p, field}, x[i], scale, rate_hz,
-                                                       interpolation == "linear" ? kernels::pan::Interpolation::linear
-                                                                                 : kernels::pan::Interpolation::quadratic));
-             }
-             const auto n = series.empty() ? py::ssize_t{0} : static_cast<py::ssize_t>(series.front().p.size());
-             py::array_t<double> p_out({static_cast<py::ssize_t>(series.size()), n}), t0({static_cast<py::ssize_t>(series.size())});
-             for (std::size_t i = 0; i < series.size(); ++i) {
-               std::copy(series[i].p.begin(), series[i].p.end(), p_out.mutable_data(static_cast<py::ssize_t>(i), 0));
-               t0.mutable_at(static_cast<py::ssize_t>(i)) = series[i].t0_s;
-             }
-             return py::dict(py::arg("t0_s") = t0, py::arg("dt_s") = series.empty() ? 0.0 : series.front().dt_s, py::arg("p") = p_out);
-           }, py::arg("entry"), py::arg("field"), py::arg("points"), py::arg("scale") = 1.0, py::arg("rate_hz") = 0.0,
+      .def("probe", &pan_probe, py::arg("entry"), py::arg("field"), py::arg("points"), py::arg("scale") = 1.0, py::arg("rate_hz") = 0.0,
            py::arg("interpolation") = "quadratic",
            "p_i^(scale h)(x, t) per unit (angular) acceleration at each point: {'t0_s': (n,), 'dt_s', 'p': (n, samples)}, "
            "as `clatter-bank probe` gives one point");
@@ -339,29 +343,43 @@ void bind_ground(py::module_& m) {
 
 // The bank at `path` as the object of its kind, by its `format` attribute.
 py::object open_bank(const std::string& path, const std::string& expected) {
-  std::string format;
-  {
-    auto file = io::File::open(path);
-    if (!io::has_attribute(file, "/", "format"))
-      throw InputError(fmt::format("{}: not a Clatter file (no 'format' attribute); expected a bank", path));
-    format = io::read_string_attribute(file, "/", "format");
-  }
-  const std::string kind = format == io::kPanBankFormat      ? "pan"
-                           : format == io::kModalBankFormat  ? "modal"
-                           : format == io::kObjectBankFormat ? "object"
-                           : format == io::kGroundBankFormat ? "ground"
-                                                             : "";
-  if (kind.empty())
-    throw InputError(fmt::format("{}: format '{}' is not a bank's (expected a PAN, modal, object or ground bank)", path, format));
-  if (!expected.empty() && kind != expected)
-    throw InputError(fmt::format("{}: a {} bank ('{}'), expected a {} bank", path, kind, format, expected));
-  if (kind == "pan") return py::cast(std::make_shared<PanFile>(PanFile{path, io::read_pan_bank(path)}));
-  if (kind == "modal") return py::cast(std::make_shared<ModalFile>(ModalFile{path, io::read_modal_bank(path)}));
-  if (kind == "object") return py::cast(std::make_shared<ObjectFile>(ObjectFile{path, io::read_object_bank(path)}));
-  return py::cast(std::make_shared<GroundFile>(GroundFile{path, io::read_ground_bank(path)}));
+  std::shared_ptr<PanFile> pan;
+  std::shared_ptr<ModalFile> modal;
+  std::shared_ptr<ObjectFile> object;
+  std::shared_ptr<GroundFile> ground;
+  exclusive([&] {
+    const std::string kind = bank_kind(path);
+    if (kind.empty())
+      throw InputError(fmt::format("{}: not a Clatter bank (its 'format' attribute names none: a PAN, modal, object or ground bank)", path));
+    if (!expected.empty() && kind != expected)
+      throw InputError(fmt::format("{}: a {} bank ('clatter-{}-bank'), expected a {} bank", path, kind, kind, expected));
+    if (kind == "pan") pan = std::make_shared<PanFile>(PanFile{path, io::read_pan_bank(path)});
+    if (kind == "modal") modal = std::make_shared<ModalFile>(ModalFile{path, io::read_modal_bank(path)});
+    if (kind == "object") object = std::make_shared<ObjectFile>(ObjectFile{path, io::read_object_bank(path)});
+    if (kind == "ground") ground = std::make_shared<GroundFile>(GroundFile{path, io::read_ground_bank(path)});
+    return 0;
+  });
+  if (pan) return py::cast(pan);
+  if (modal) return py::cast(modal);
+  if (object) return py::cast(object);
+  return py::cast(ground);
 }
 
 }  // namespace
+
+std::mutex& library_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+std::string bank_kind(const std::string& path) {
+  auto file = io::File::open(path);
+  if (!io::has_attribute(file, "/", "format")) return "";
+  const std::string format = io::read_string_attribute(file, "/", "format");
+  for (const char* kind : {io::kPanBankFormat, io::kModalBankFormat, io::kObjectBankFormat, io::kGroundBankFormat})
+    if (format == kind) return std::string(kind).substr(8, std::string(kind).size() - 13);  // clatter-KIND-bank
+  return "";
+}
 
 void bind_banks(py::module_& m) {
   bind_pan(m);
@@ -371,6 +389,7 @@ void bind_banks(py::module_& m) {
   m.def("open_bank", &open_bank, py::arg("path"), py::arg("kind") = "",
         "open a bank file, read and checked as clatter-synth reads it: a PanBank, ModalBank, ObjectBank or GroundBank by "
         "its format; with kind ('pan', 'modal', 'object', 'ground') an InputError unless it is one");
+  m.def("_bank_kind", [](const std::string& path) { return exclusive([&] { return bank_kind(path); }); }, py::arg("path"));
 }
 
 }  // namespace clatter::python

@@ -104,9 +104,9 @@ std::shared_ptr<PyScene> resolved(io::Scene scene) {
   return std::make_shared<PyScene>(PyScene{std::move(scene), false});
 }
 
-py::list objects_of(const io::Scene& s) {
+py::list objects_of(const std::vector<io::SceneObject>& objects) {
   py::list out;
-  for (const auto& o : s.objects) {
+  for (const auto& o : objects) {
     py::dict d;
     d["id"] = o.id, d["material"] = o.material, d["mass_kg"] = o.mass_kg, d["volume_m3"] = o.volume_m3;
     d["inertia_kg_m2"] = o.inertia_kg_m2;
@@ -156,17 +156,22 @@ void bind_scene(py::module_& m) {
         }
         return d;
       })
-      .def_property_readonly("objects", [](const PyScene& s) { return objects_of(s.scene); })
+      .def_property_readonly("objects", [](const PyScene& s) {
+        // A render in another thread may be adding base frequencies: read them under its lock.
+        return objects_of(exclusive([&] { return s.scene.objects; }));
+      })
       .def_property_readonly("listeners_m", [](py::object self) { return view(self.cast<const PyScene&>().scene.listeners_m, self); })
       .def_property_readonly("events", [](const PyScene& s) { return events_of(s.scene); })
       .def("__len__", [](const PyScene& s) { return s.scene.events.size(); });
-  m.def("_parse_scene", [](const std::string& text, const std::string& name) { return resolved(io::parse_scene(text, name)); },
+  m.def("_parse_scene", [](const std::string& text, const std::string& name) {
+          return exclusive([&] { return resolved(io::parse_scene(text, name)); });
+        },
         py::arg("text"), py::arg("name"));
   m.def("_load_scene", [](const std::string& path, const std::string& impulses) {
-          return std::make_shared<PyScene>(PyScene{synth::load_scene(path, impulses, false), false});
+          return exclusive([&] { return std::make_shared<PyScene>(PyScene{synth::load_scene(path, impulses, false), false}); });
         }, py::arg("path"), py::arg("impulses") = "");
   m.def("read_mesh", [](const std::string& path) {
-          const io::TriangleMesh mesh = io::read_obj(path);
+          const io::TriangleMesh mesh = exclusive([&] { return io::read_obj(path); });
           py::array_t<double> v({static_cast<py::ssize_t>(mesh.vertices_m.size()), py::ssize_t{3}});
           py::array_t<std::int32_t> t({static_cast<py::ssize_t>(mesh.triangles.size()), py::ssize_t{3}});
           std::copy_n(&mesh.vertices_m.front()[0], 3 * mesh.vertices_m.size(), v.mutable_data());

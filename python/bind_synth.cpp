@@ -9,7 +9,6 @@
 
 #include "core/errors.hpp"
 #include "core/stage_log.hpp"
-#include "io/h5.hpp"
 #include "python/arrays.hpp"
 #include "python/bindings.hpp"
 #include "synth/synthesize.hpp"
@@ -118,36 +117,26 @@ py::list voices(const PyRender& r, const io::Scene& scene) {
 
 std::shared_ptr<PyRender> render(PyScene& scene, const synth::SynthOptions& options, bool normalize) {
   synth::check_options(options);
-  const io::Scene& s = scene.for_render(options.modal_sound());
   auto r = std::make_shared<PyRender>();
-  const auto before = stage_seconds();
-  {
-    py::gil_scoped_release unlocked;
-    r->synthesis = synth::synthesize(s, options);
+  exclusive([&] {
+    const io::Scene& ready = scene.for_render(options.modal_sound());
+    const auto before = stage_seconds();
+    r->synthesis = synth::synthesize(ready, options);
     r->mix = r->synthesis.mix();
-  }
-  for (const auto& [path, now] : stage_seconds()) {
-    const auto it = before.find(path);
-    const auto was = it == before.end() ? std::pair<long long, double>{0, 0.0} : it->second;
-    if (now.first > was.first) r->stages_s[path] = now.second - was.second;  // the stages this render entered
-  }
+    for (const auto& [path, now] : stage_seconds()) {
+      const auto it = before.find(path);
+      const auto was = it == before.end() ? std::pair<long long, double>{0, 0.0} : it->second;
+      if (now.first > was.first) r->stages_s[path] = now.second - was.second;  // the stages this render entered
+    }
+    r->events = ready.events.size(), r->objects = ready.objects.size(), r->listeners = ready.listeners_m.size();
+    return 0;
+  });
   r->peak_pa = synth::peak_of(r->mix);
   if (normalize && r->peak_pa > 0) r->gain = 0.99 / r->peak_pa;
   r->rate_hz = options.render.rate_hz;
   r->max_sustained_s = options.render.max_sustained_s;
-  r->events = s.events.size(), r->objects = s.objects.size(), r->listeners = s.listeners_m.size();
   r->object_pans = options.object_pans;
   return r;
-}
-
-// The kind of bank at `path` from its format attribute alone ("" when none).
-std::string bank_kind(const std::string& path) {
-  auto file = io::File::open(path);
-  if (!io::has_attribute(file, "/", "format")) return "";
-  const std::string f = io::read_string_attribute(file, "/", "format");
-  for (const char* kind : {"pan", "modal", "object", "ground"})
-    if (f == fmt::format("clatter-{}-bank", kind)) return kind;
-  return "";
 }
 
 }  // namespace
@@ -196,13 +185,14 @@ void bind_synth(py::module_& m) {
       .def("voices", [](const PyRender& r, const PyScene& scene) { return voices(r, scene.scene); }, py::arg("scene"))
       .def("write_wav", [](const PyRender& r, const std::string& path, const std::string& format, bool stems) {
              if (format != "float" && format != "pcm24") throw InputError(fmt::format("format: '{}': expected 'float' or 'pcm24'", format));
-             return synth::write_outputs(r.synthesis, r.mix, path, r.rate_hz,
-                                         format == "pcm24" ? io::SampleFormat::pcm24 : io::SampleFormat::float32, r.gain, stems);
+             return exclusive([&] {
+               return synth::write_outputs(r.synthesis, r.mix, path, r.rate_hz,
+                                           format == "pcm24" ? io::SampleFormat::pcm24 : io::SampleFormat::float32, r.gain, stems);
+             });
            }, py::arg("path"), py::arg("format") = "float", py::arg("stems") = false);
-  m.def("stage_table", [] { return format_stage_table(merge_stage_entries({stage_log().entries()}), 1); },
+  m.def("stage_table", [] { return exclusive([] { return format_stage_table(merge_stage_entries({stage_log().entries()}), 1); }); },
         "the stage-timing table of every load_scene and render of this process so far (clatter-synth --log-view's)");
   m.def("_render", &render, py::arg("scene"), py::arg("options"), py::arg("normalize"));
-  m.def("_bank_kind", &bank_kind, py::arg("path"));
 }
 
 }  // namespace clatter::python

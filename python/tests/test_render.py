@@ -6,6 +6,7 @@ import json
 import os
 import re
 import subprocess
+import threading
 import warnings
 
 import numpy as np
@@ -218,3 +219,30 @@ def test_an_object_with_its_own_modal_model_equals_clatter_synth(banks, synth_pr
     assert out.summary()["modal"]["own_models"] == 1 and out.voices()[0]["voiced_by"] == "own"
     _, mix = read_wav(wav)
     assert np.abs(mix).max() > 0 and np.array_equal(out.mix.astype(np.float32), mix)
+
+
+def test_renders_in_threads_agree_with_one_alone(banks, source_dir, tmp_path):
+    """Python threads may render at once: the module runs one render (or bank read) at a time with
+    the GIL released (the stage log and the serial HDF5 serve one thread), so nothing races and
+    every thread gets the samples of a render alone."""
+    scene_path, _ = demo_scene(source_dir, tmp_path)
+    sources = dict(pan=banks["pan"], modal=banks["modal"], ground=banks["ground"])
+    alone = clatter.render(clatter.load_scene(scene_path), **sources).mix
+    results, errors = [], []
+
+    def work():
+        try:
+            scene = clatter.load_scene(scene_path)
+            for _ in range(3):
+                results.append(clatter.render(scene, **sources).mix)
+                assert len(clatter.open_bank(banks["modal"])) == 1 and scene.objects[0]["id"] == 1
+        except Exception as e:  # reported below: an exception in a thread does not fail the test itself
+            errors.append(e)
+
+    threads = [threading.Thread(target=work) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors, errors
+    assert len(results) == 12 and all(np.array_equal(r, alone) for r in results)
