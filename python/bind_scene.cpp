@@ -162,7 +162,13 @@ void bind_scene(py::module_& m) {
       })
       .def_property_readonly("listeners_m", [](py::object self) { return view(self.cast<const PyScene&>().scene.listeners_m, self); })
       .def_property_readonly("events", [](const PyScene& s) { return events_of(s.scene); })
-      .def("__len__", [](const PyScene& s) { return s.scene.events.size(); });
+      .def("__len__", [](const PyScene& s) { return s.scene.events.size(); })
+      .def("write", [](const PyScene& s, const std::string& path) {
+             exclusive([&] {
+               io::write_scene(s.scene, path, R"json({"program": "clatter (Python)"})json");
+               return 0;
+             });
+           }, py::arg("path"), "the scene as a scene file clatter-synth reads (meshes into PATH's .meshes folder), atomically");
   m.def("_parse_scene", [](const std::string& text, const std::string& name) {
           return exclusive([&] { return resolved(io::parse_scene(text, name)); });
         },

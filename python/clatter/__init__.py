@@ -176,6 +176,11 @@ class Scene:
     def __len__(self):
         return len(self._data)
 
+    def write(self, path):
+        """The scene as a file clatter-synth -i reads (docs/scene-format.md): every number as read,
+        objects given by meshes written with their OBJ beside it (PATH's .meshes folder)."""
+        self._data.write(os.fspath(path))
+
     def __repr__(self):
         return (f"<clatter.Scene '{self.path}': {len(self.objects)} objects, {len(self)} events, "
                 f"{len(self.listeners_m)} listeners>")

@@ -117,6 +117,10 @@ def test_a_scene_built_from_numpy_renders_as_its_file(banks, source_dir, tmp_pat
     b = clatter.render(loaded, pan=clatter.open_bank(banks["pan"]), modal=[banks["modal"]], ground=banks["ground"])
     for name in a.sources:
         assert np.array_equal(a.stems[name], b.stems[name]), name
+    # Written as a file and read back (what clatter-synth -i would read), it renders the same.
+    built.write(tmp_path / "built.json")
+    assert np.array_equal(clatter.render(clatter.load_scene(tmp_path / "built.json"), pan=banks["pan"]).mix,
+                          clatter.render(built, pan=banks["pan"]).mix)
     # Linearity of every source in the impulse (PAN eq. 15, the modes, Lamb's problem), with the
     # contact times held: the speeds stay, so Hertz's tau does; twice the impulse, twice the sound.
     columns = scene_from_columns(doc)
@@ -185,6 +189,11 @@ def test_a_mesh_object_rings_at_its_mesh_s_frequency_as_in_clatter_synth(banks, 
     assert np.abs(mix).max() > 0 and np.array_equal(out.mix.astype(np.float32), mix)
     again = clatter.render(scene, modal=banks["modal"])  # the frequency kept, the same samples
     assert np.array_equal(again.mix, out.mix)
+    # Written out (its OBJ beside it, its base frequency now given), clatter-synth renders it alike.
+    scene.write(tmp_path / "written.json")
+    assert len(list((tmp_path / "written.meshes").glob("*.obj"))) == 1
+    run_synth(synth_program, ["-i", str(tmp_path / "written.json"), "-m", banks["modal"], "-o", str(tmp_path / "written.wav")])
+    assert np.array_equal(out.mix.astype(np.float32), read_wav(tmp_path / "written.wav")[1])
 
 
 def test_write_wav_writes_what_clatter_synth_writes(banks, synth_program, source_dir, tmp_path):
