@@ -46,13 +46,21 @@ def _column(events, key, n, width=None, dtype=float, required=True):
         if required:
             raise InputError(f"events: no '{key}' column")
         return None
-    a = np.asarray(events[key], dtype=dtype)
+    try:
+        a = np.asarray(events[key], dtype=float)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"events['{key}']: {e}") from None
     shape = (n,) if width is None else (n, width)
     if a.shape != shape:
         raise InputError(f"events['{key}']: shape {a.shape}, expected {shape}")
-    if dtype is float and not np.all(np.isfinite(a)):
+    if not np.all(np.isfinite(a)):
         row = int(np.argwhere(~np.isfinite(a))[0][0])
         raise InputError(f"events['{key}'][{row}]: {a[row]} is not finite")
+    if dtype is not float:  # object ids: whole numbers, never silently truncated
+        if not np.array_equal(a, np.round(a)):
+            row = int(np.argwhere(a != np.round(a))[0][0])
+            raise InputError(f"events['{key}'][{row}]: {a[row]} is not an object id")
+        return a.astype(np.int64)
     return a
 
 

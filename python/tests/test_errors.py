@@ -42,6 +42,8 @@ def test_scene_arguments_are_named():
     bad = events()
     bad["impulse_n_s"][1, 2] = np.nan
     raises(r"events\['impulse_n_s'\]\[1\]", scene, events=bad)
+    raises(r"events\['a'\]\[0\]: 1.5 is not an object id", scene, events=events(a=np.full(3, 1.5)))
+    raises(r"events\['t_s'\]: could not convert", scene, events=events(t_s=["soon", "later", "never"]))
     raises(r"events: no 'position_a_m' column", scene, events={k: v for k, v in events().items() if k != "position_a_m"})
     raises(r"events\['kind'\]\[0\]: 'bounce'", scene, events=events(kind=["bounce"] * 3))
     raises(r"objects\[0\]\['mass_kg'\]: nan is not finite", scene, objects=[dict(OBJECTS[0], mass_kg=float("nan"))])
